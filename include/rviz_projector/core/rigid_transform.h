@@ -1,0 +1,29 @@
+// Rotation + translation taking points from one frame into another (p_parent = R * p_child + t).
+#pragma once
+
+#include <array>
+
+#include "rviz_projector/core/vec3.h"
+
+namespace rviz_projector
+{
+class RigidTransform
+{
+public:
+  /// Identity transform.
+  RigidTransform() = default;
+  /// From a unit quaternion (x, y, z, w; normalised here) and a translation.
+  static RigidTransform fromQuaternion(double qx, double qy, double qz, double qw, const Vec3& translation);
+
+  Vec3 apply(const Vec3& p) const;
+  /// Rotates a direction (no translation).
+  Vec3 rotate(const Vec3& d) const;
+  const Vec3& translation() const { return t_; }
+  /// Row-major rotation matrix.
+  const std::array<double, 9>& rotation() const { return r_; }
+
+private:
+  std::array<double, 9> r_{1, 0, 0, 0, 1, 0, 0, 0, 1};
+  Vec3 t_;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,26 @@
+// Inputs of PathSpacer besides the path itself.
+#pragma once
+
+#include <cstddef>
+
+#include "rviz_projector/core/arrow_dimensions.h"
+#include "rviz_projector/core/spacing_mode.h"
+
+namespace rviz_projector
+{
+struct SpacingParameters
+{
+  SpacingMode mode = SpacingMode::Exact;
+  /// Exact: arc length tip to tip. Paper: minimum planar distance between kept points (D).
+  double spacing = 0.25;
+  ArrowDimensions arrow;
+  double circle_diameter = 0.20;
+  /// Exact mode: free floor between the destination circle's edge and the first arrow's tip.
+  double destination_gap = 0.05;
+  /// Upper bound on the arrows produced (a 1e9 m path at 1 cm spacing must not allocate forever).
+  std::size_t max_arrows = 100000;
+
+  /// Smallest spacing accepted; smaller values are raised to it.
+  static constexpr double kMinSpacing = 1e-3;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,203 @@
+#include "rviz_projector/core/path_spacer.h"
+
+#include "rviz_projector/core/arrow_outline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rviz_projector
+{
+namespace
+{
+double finiteAtLeast(double value, double minimum, double fallback)
+{
+  if (!std::isfinite(value))
+  {
+    return fallback;
+  }
+  return std::max(value, minimum);
+}
+
+/**
+ * Walks a polyline from its last point towards its first and returns the point at a given arc
+ * length from the last point. Arc lengths asked for must not decrease between calls, which keeps
+ * the whole walk linear. Lengths are accumulated from the last point, so the same tail of a path
+ * always yields bit-identical points.
+ */
+class BackwardWalker
+{
+public:
+  explicit BackwardWalker(const std::vector<Vec2>& points)
+    : points_(points), segment_(points.size() >= 2 ? points.size() - 2 : 0)
+  {
+  }
+
+  Vec2 pointAt(double arc_length)
+  {
+    double length = segmentLength();
+    while (segment_ > 0 && arc_length > start_ + length)
+    {
+      start_ += length;
+      --segment_;
+      length = segmentLength();
+    }
+    const Vec2& near_end = points_[segment_ + 1];
+    if (length <= 0.0)
+    {
+      return near_end;
+    }
+    const double fraction = std::min(1.0, std::max(0.0, (arc_length - start_) / length));
+    return near_end + (points_[segment_] - near_end) * fraction;
+  }
+
+private:
+  double segmentLength() const { return distance(points_[segment_], points_[segment_ + 1]); }
+
+  const std::vector<Vec2>& points_;
+  std::size_t segment_;  // segment between points_[segment_] and points_[segment_ + 1]
+  double start_ = 0.0;   // arc length from the last point to points_[segment_ + 1]
+};
+}  // namespace
+
+PathSpacer::PathSpacer(const SpacingParameters& parameters)
+{
+  setParameters(parameters);
+}
+
+void PathSpacer::setParameters(const SpacingParameters& parameters)
+{
+  const SpacingParameters defaults;
+  parameters_ = parameters;
+  parameters_.spacing = finiteAtLeast(parameters.spacing, SpacingParameters::kMinSpacing, defaults.spacing);
+  parameters_.circle_diameter = finiteAtLeast(parameters.circle_diameter, 0.0, defaults.circle_diameter);
+  parameters_.destination_gap = finiteAtLeast(parameters.destination_gap, 0.0, defaults.destination_gap);
+  ArrowDimensions& arrow = parameters_.arrow;
+  arrow.shaft_length = finiteAtLeast(arrow.shaft_length, 0.0, defaults.arrow.shaft_length);
+  arrow.shaft_diameter = finiteAtLeast(arrow.shaft_diameter, 0.0, defaults.arrow.shaft_diameter);
+  arrow.head_length = finiteAtLeast(arrow.head_length, 0.0, defaults.arrow.head_length);
+  arrow.head_diameter = finiteAtLeast(arrow.head_diameter, 0.0, defaults.arrow.head_diameter);
+  if (parameters_.mode != SpacingMode::Exact && parameters_.mode != SpacingMode::Paper)
+  {
+    parameters_.mode = SpacingMode::Exact;
+  }
+}
+
+const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path)
+{
+  result_.arrows.clear();
+  result_.has_destination = false;
+  result_.destination = Vec2();
+  result_.truncated = false;
+  result_.path_length = 0.0;
+
+  points_.clear();
+  points_.reserve(path.size());
+  for (const Vec2& p : path)
+  {
+    if (isFinite(p))
+    {
+      points_.push_back(p);
+    }
+  }
+  result_.dropped_points = path.size() - points_.size();
+  if (points_.empty())
+  {
+    return result_;
+  }
+  result_.has_destination = true;
+  result_.destination = points_.back();
+  for (std::size_t i = points_.size() - 1; i > 0; --i)
+  {
+    result_.path_length += distance(points_[i], points_[i - 1]);
+  }
+
+  if (parameters_.mode == SpacingMode::Paper)
+  {
+    placePaper();
+  }
+  else
+  {
+    placeExact();
+  }
+  return result_;
+}
+
+void PathSpacer::placeExact()
+{
+  const double radius = 0.5 * parameters_.circle_diameter;
+  const double first_tip = radius + parameters_.destination_gap;
+  const double arrow_length = parameters_.arrow.length();
+  const double total = result_.path_length;
+  if (points_.size() < 2 || first_tip + arrow_length > total)
+  {
+    return;
+  }
+  // Count first so the vector is sized once; the count is bounded by max_arrows.
+  const double fitting = std::floor((total - first_tip - arrow_length) / parameters_.spacing) + 1.0;
+  std::size_t count = parameters_.max_arrows;
+  if (fitting < static_cast<double>(parameters_.max_arrows))
+  {
+    count = static_cast<std::size_t>(fitting);
+  }
+  else
+  {
+    result_.truncated = fitting > static_cast<double>(parameters_.max_arrows);
+  }
+  result_.arrows.resize(count);
+
+  // Tips and tails each have their own walker: both sequences grow, but a tail may lie beyond the
+  // next tip (arrow longer than the spacing), so one shared walker could not stay monotonic.
+  BackwardWalker tips(points_);
+  BackwardWalker tails(points_);
+  std::size_t placed = 0;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const double tip_s = first_tip + static_cast<double>(k) * parameters_.spacing;
+    const double tail_s = tip_s + arrow_length;
+    if (tail_s > total)
+    {
+      break;  // rounding in `fitting`; never draw an arrow that leaves the path
+    }
+    Arrow& arrow = result_.arrows[placed];
+    arrow.tip = tips.pointAt(tip_s);
+    arrow.tail = tails.pointAt(tail_s);
+    // A path curling back round its goal can bring an arrow over the circle: leave that one out.
+    if (ArrowOutline(arrow, parameters_.arrow).distanceTo(result_.destination) >= radius)
+    {
+      ++placed;
+    }
+  }
+  result_.arrows.resize(placed);
+}
+
+void PathSpacer::placePaper()
+{
+  kept_.clear();
+  const double d_min = parameters_.spacing;
+  const double d_destination = parameters_.spacing + parameters_.circle_diameter;
+  const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(points_.size()) - 1;
+  std::ptrdiff_t current = last;
+  do
+  {
+    const Vec2 p = points_[static_cast<std::size_t>(current)];
+    kept_.push_back(p);
+    const double needed = current == last ? d_destination : d_min;
+    std::ptrdiff_t previous = current - 1;
+    while (previous >= 0 && distance(p, points_[static_cast<std::size_t>(previous)]) < needed)
+    {
+      --previous;
+    }
+    current = previous;  // -1 when the walk ran off the start (the reference's out_of_range)
+  } while (current > 0);
+
+  const std::size_t pairs = kept_.size() / 2;
+  const std::size_t count = std::min(pairs, parameters_.max_arrows);
+  result_.truncated = pairs > count;
+  result_.arrows.resize(count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    result_.arrows[k].tip = kept_[2 * k];
+    result_.arrows[k].tail = kept_[2 * k + 1];
+  }
+}
+}  // namespace rviz_projector

@@ -1,0 +1,81 @@
+// FloorFootprint: where the projector's image lands on the floor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rviz_projector/core/floor_footprint.h"
+
+using rviz_projector::FloorFootprint;
+using rviz_projector::PinholeModel;
+using rviz_projector::RigidTransform;
+using rviz_projector::Vec2;
+using rviz_projector::Vec3;
+
+namespace
+{
+/// Optical frame looking straight down from `height`: optical x = world x, optical y = world -y.
+RigidTransform lookingDown(double height) { return RigidTransform::fromQuaternion(1, 0, 0, 0, {0, 0, height}); }
+
+/// Optical frame pitched down by `pitch` from horizontal, looking along world +x.
+RigidTransform pitchedDown(double pitch, double height)
+{
+  // Body frame (x forward, z up) pitched by +pitch about y, then the body->optical rotation.
+  const double s = std::sin(pitch / 2), c = std::cos(pitch / 2);
+  // q_body = (0, s, 0, c); q_optical_in_body = (-0.5, 0.5, -0.5, 0.5); product q_body * q_opt.
+  const double ax = 0, ay = s, az = 0, aw = c;
+  const double bx = -0.5, by = 0.5, bz = -0.5, bw = 0.5;
+  return RigidTransform::fromQuaternion(aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+                                        aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz,
+                                        {0, 0, height});
+}
+}  // namespace
+
+TEST(FloorFootprint, StraightDownIsARectangle)
+{
+  PinholeModel lens(1280, 800, 1000, 1000, 639.5, 399.5);
+  FloorFootprint f(lens, lookingDown(1.2), 20.0);
+  ASSERT_TRUE(f.complete());
+  // Half-widths at the pixel edges: 640 / 1000 and 400 / 1000 per metre of height.
+  EXPECT_NEAR(f.width(), 2 * 0.64 * 1.2, 1e-9);
+  EXPECT_NEAR(f.depth(), 2 * 0.40 * 1.2, 1e-9);
+  EXPECT_NEAR(f.throwDistance(), 1.2, 1e-9);
+  // Top-left pixel corner: optical (-0.64, -0.4) -> world (-0.768, +0.48).
+  EXPECT_NEAR(f.corners()[0].x, -0.768, 1e-9);
+  EXPECT_NEAR(f.corners()[0].y, 0.48, 1e-9);
+  EXPECT_NEAR(f.corners()[0].z, 0.0, 1e-12);
+}
+
+TEST(FloorFootprint, CornersProjectBackToTheImageCorners)
+{
+  PinholeModel lens(1280, 800, 1900, 1900, 640, 817);
+  const RigidTransform pose = pitchedDown(0.9, 1.2);
+  FloorFootprint f(lens, pose, 50.0);
+  ASSERT_TRUE(f.complete());
+  const Vec2 expected[] = {{-0.5, -0.5}, {1279.5, -0.5}, {1279.5, 799.5}, {-0.5, 799.5}};
+  // World -> optical: inverse of the pose (rotation transpose).
+  const auto& R = pose.rotation();
+  for (int i = 0; i < 4; ++i)
+  {
+    const Vec3 d = f.corners()[i] - pose.translation();
+    const Vec3 optical{R[0] * d.x + R[3] * d.y + R[6] * d.z, R[1] * d.x + R[4] * d.y + R[7] * d.z,
+                       R[2] * d.x + R[5] * d.y + R[8] * d.z};
+    Vec2 px;
+    ASSERT_TRUE(lens.project(optical, px));
+    EXPECT_NEAR(px.x, expected[i].x, 1e-6);
+    EXPECT_NEAR(px.y, expected[i].y, 1e-6);
+  }
+  // The bottom of the image (larger v) is nearer the robot: trapezoid, wider at the far (top) edge.
+  EXPECT_GT(f.corners()[0].x, f.corners()[3].x);
+  EXPECT_GT(std::abs(f.corners()[0].y - f.corners()[1].y), std::abs(f.corners()[3].y - f.corners()[2].y));
+}
+
+TEST(FloorFootprint, RaysAboveTheHorizonEndAtMaxDistance)
+{
+  PinholeModel lens(1280, 800, 1000, 1000, 639.5, 399.5);
+  FloorFootprint f(lens, pitchedDown(0.1, 1.2), 8.0);
+  EXPECT_FALSE(f.complete());
+  EXPECT_NEAR(rviz_projector::norm(f.corners()[0] - f.origin()), 8.0, 1e-9);  // top edge: sky
+  EXPECT_NEAR(f.corners()[3].z, 0.0, 1e-9);                                   // bottom edge: floor
+  FloorFootprint up(lens, pitchedDown(-0.5, 1.2), 8.0);
+  EXPECT_LT(up.throwDistance(), 0.0);
+}
