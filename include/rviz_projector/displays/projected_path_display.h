@@ -1,0 +1,88 @@
+// rviz display "rviz_projector/ProjectedPath": evenly spaced arrows and a destination circle on the
+// floor for a nav_msgs/Path. A thin adapter: PathSpacer places the arrows, FloorMesh draws them.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <memory>
+#include <vector>
+
+#include <nav_msgs/Path.h>
+#include <rviz/message_filter_display.h>
+
+#include "rviz_projector/core/mesh_vertex.h"
+#include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/vec2.h"
+#endif
+
+namespace rviz
+{
+class ColorProperty;
+class EnumProperty;
+class FloatProperty;
+}  // namespace rviz
+
+namespace rviz_projector
+{
+class FloorMesh;
+
+class ProjectedPathDisplay : public rviz::MessageFilterDisplay<nav_msgs::Path>
+{
+  Q_OBJECT
+public:
+  /// Default topic: the global plan of move_base's TrajectoryPlannerROS, as on the reference robot.
+  static constexpr const char* kDefaultTopic = "/move_base/TrajectoryPlannerROS/global_plan";
+
+  ProjectedPathDisplay();
+  ~ProjectedPathDisplay() override;
+
+  void reset() override;
+
+  /// Arrows and destination currently drawn, in the fixed frame (for tests and tools).
+  const SpacedPath& spacedPath() const { return *spaced_; }
+  /// Triangles in the arrow mesh and the circle mesh.
+  std::size_t arrowTriangleCount() const;
+  std::size_t circleTriangleCount() const;
+
+protected:
+  void onInitialize() override;
+  void onEnable() override;
+  void onDisable() override;
+  void processMessage(const nav_msgs::Path::ConstPtr& msg) override;
+
+private Q_SLOTS:
+  void updateSpacing();
+  void updateAppearance();
+  void updateStyle();
+
+private:
+  SpacingParameters spacingParameters() const;
+  /// Re-spaces the last path (fixed-frame points) and rebuilds the meshes.
+  void rebuild();
+  void redraw();
+  void checkGeometry(const SpacingParameters& parameters);
+
+  rviz::EnumProperty* mode_property_;
+  rviz::FloatProperty* spacing_property_;
+  rviz::FloatProperty* shaft_length_property_;
+  rviz::FloatProperty* shaft_diameter_property_;
+  rviz::FloatProperty* head_length_property_;
+  rviz::FloatProperty* head_diameter_property_;
+  rviz::FloatProperty* circle_diameter_property_;
+  rviz::ColorProperty* arrow_color_property_;
+  rviz::ColorProperty* circle_color_property_;
+  rviz::FloatProperty* alpha_property_;
+  rviz::FloatProperty* height_property_;
+  rviz::EnumProperty* style_property_;
+
+  PathSpacer spacer_;
+  const SpacedPath* spaced_;
+  SpacedPath empty_;
+  std::vector<Vec2> floor_points_;  // last path, in the fixed frame
+  bool have_path_ = false;
+  std::size_t dropped_poses_ = 0;
+  std::vector<Vec2> flat_buffer_;
+  std::vector<MeshVertex> solid_buffer_;
+  std::unique_ptr<FloorMesh> arrow_mesh_;
+  std::unique_ptr<FloorMesh> circle_mesh_;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,29 @@
+// ROS message -> core type conversions shared by the displays and nodes.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <geometry_msgs/Pose.h>
+#include <nav_msgs/Path.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "rviz_projector/core/lens_calibration.h"
+#include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/core/vec2.h"
+
+namespace rviz_projector
+{
+/// True when every number of the pose (position and orientation) is finite.
+bool isFinitePose(const geometry_msgs::Pose& pose);
+
+/**
+ * Floor positions (x, y in the target frame) of a path's poses, transformed by `path_to_target`.
+ * Poses with a NaN/Inf anywhere are skipped; returns how many. `out` is cleared first and keeps
+ * its capacity between calls.
+ */
+std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& path_to_target,
+                              std::vector<Vec2>& out);
+
+LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info);
+}  // namespace rviz_projector

@@ -1,0 +1,311 @@
+#include "rviz_projector/displays/projected_path_display.h"
+
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+
+#include <rviz/display_context.h>
+#include <rviz/frame_manager.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/enum_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/ros_topic_property.h>
+#include <rviz/properties/status_property.h>
+
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/core/arrow_solid.h"
+#include "rviz_projector/core/disc_outline.h"
+#include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/ros_conversions.h"
+
+namespace rviz_projector
+{
+namespace
+{
+enum Style
+{
+  kFlat = 0,
+  kSolid = 1,
+};
+
+/// Smallest accepted arrow size or circle diameter: a zero-sized shape would silently vanish.
+constexpr float kMinSize = 0.005f;
+/// Largest accepted size: beyond a few metres arrows stop meaning anything on a floor.
+constexpr float kMaxSize = 10.0f;
+/// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
+constexpr double kArrowLift = 0.001;
+
+rviz::FloatProperty* sizeProperty(const QString& name, float value, const QString& description,
+                                  rviz::Property* parent, const char* slot, QObject* receiver)
+{
+  auto* property = new rviz::FloatProperty(name, value, description, parent, slot, receiver);
+  property->setMin(kMinSize);
+  property->setMax(kMaxSize);
+  return property;
+}
+}  // namespace
+
+ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
+{
+  topic_property_->setValue(kDefaultTopic);
+  const SpacingParameters defaults;
+
+  mode_property_ = new rviz::EnumProperty(
+      "Spacing mode", "Exact",
+      "Exact: arrows every Spacing metres of path, measured back from the destination (steady while "
+      "the robot drives). Paper: Algorithm 1 of Han et al. (HRI 2022), arrows between pairs of "
+      "path poses at least Spacing apart.",
+      this, SLOT(updateSpacing()), this);
+  mode_property_->addOption("Exact", static_cast<int>(SpacingMode::Exact));
+  mode_property_->addOption("Paper", static_cast<int>(SpacingMode::Paper));
+
+  spacing_property_ = new rviz::FloatProperty(
+      "Spacing", static_cast<float>(defaults.spacing),
+      "Exact: path length from one arrow tip to the next, metres. Paper: minimum distance between the "
+      "path poses that arrows join, metres.",
+      this, SLOT(updateSpacing()), this);
+  spacing_property_->setMin(0.01f);
+  spacing_property_->setMax(100.0f);
+
+  shaft_length_property_ = sizeProperty("Shaft length", static_cast<float>(defaults.arrow.shaft_length),
+                                        "Length of an arrow's shaft, metres (Exact mode; in Paper mode "
+                                        "the shaft fills the space between the joined poses).",
+                                        this, SLOT(updateSpacing()), this);
+  shaft_diameter_property_ = sizeProperty("Shaft diameter", static_cast<float>(defaults.arrow.shaft_diameter),
+                                          "Width of an arrow's shaft, metres.", this, SLOT(updateSpacing()), this);
+  head_length_property_ = sizeProperty("Head length", static_cast<float>(defaults.arrow.head_length),
+                                       "Length of an arrow's head, metres.", this, SLOT(updateSpacing()), this);
+  head_diameter_property_ = sizeProperty("Head diameter", static_cast<float>(defaults.arrow.head_diameter),
+                                         "Width of an arrow's head at its base, metres.", this,
+                                         SLOT(updateSpacing()), this);
+  circle_diameter_property_ = sizeProperty(
+      "Destination circle diameter", static_cast<float>(defaults.circle_diameter),
+      "Diameter of the filled circle drawn at the path's destination, metres.", this, SLOT(updateSpacing()), this);
+
+  arrow_color_property_ = new rviz::ColorProperty("Arrow color", QColor(255, 0, 255), "Colour of the arrows.",
+                                                  this, SLOT(updateAppearance()), this);
+  circle_color_property_ = new rviz::ColorProperty("Circle color", QColor(0, 255, 0),
+                                                   "Colour of the destination circle.", this,
+                                                   SLOT(updateAppearance()), this);
+  alpha_property_ = new rviz::FloatProperty("Alpha", 1.0f, "Opacity: 1 is opaque, 0 invisible.", this,
+                                            SLOT(updateAppearance()), this);
+  alpha_property_->setMin(0.0f);
+  alpha_property_->setMax(1.0f);
+  height_property_ = new rviz::FloatProperty(
+      "Height above floor", 0.01f,
+      "Height of the drawing above z = 0 of the fixed frame, metres (a little lift avoids fighting "
+      "with a grid or map on the floor).",
+      this, SLOT(updateAppearance()), this);
+  height_property_->setMin(-10.0f);
+  height_property_->setMax(10.0f);
+
+  style_property_ = new rviz::EnumProperty(
+      "Style", "Flat",
+      "Flat: unlit filled outlines in exactly the chosen colours (what a projector should show). "
+      "3D: shaded shaft cylinders and head cones.",
+      this, SLOT(updateStyle()), this);
+  style_property_->addOption("Flat", kFlat);
+  style_property_->addOption("3D", kSolid);
+}
+
+ProjectedPathDisplay::~ProjectedPathDisplay() = default;
+
+void ProjectedPathDisplay::onInitialize()
+{
+  MFDClass::onInitialize();
+  arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  spacer_.setParameters(spacingParameters());
+  setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
+}
+
+void ProjectedPathDisplay::onEnable()
+{
+  MFDClass::onEnable();
+  scene_node_->setVisible(true);
+}
+
+void ProjectedPathDisplay::onDisable()
+{
+  MFDClass::onDisable();
+  scene_node_->setVisible(false);
+}
+
+void ProjectedPathDisplay::reset()
+{
+  MFDClass::reset();
+  have_path_ = false;
+  floor_points_.clear();
+  dropped_poses_ = 0;
+  spaced_ = &empty_;
+  if (arrow_mesh_)
+  {
+    arrow_mesh_->clear();
+    circle_mesh_->clear();
+  }
+  setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
+}
+
+SpacingParameters ProjectedPathDisplay::spacingParameters() const
+{
+  SpacingParameters p;
+  p.mode = mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper) ? SpacingMode::Paper
+                                                                                  : SpacingMode::Exact;
+  p.spacing = spacing_property_->getFloat();
+  p.arrow.shaft_length = shaft_length_property_->getFloat();
+  p.arrow.shaft_diameter = shaft_diameter_property_->getFloat();
+  p.arrow.head_length = head_length_property_->getFloat();
+  p.arrow.head_diameter = head_diameter_property_->getFloat();
+  p.circle_diameter = circle_diameter_property_->getFloat();
+  return p;
+}
+
+void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
+{
+  // The tf filter only lets a message through once its frame can be transformed; this lookup can
+  // still fail if tf changed since, and then the previous drawing stays.
+  Ogre::Vector3 position;
+  Ogre::Quaternion orientation;
+  if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
+  {
+    std::string error;
+    context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error);
+    setStatus(rviz::StatusProperty::Error, "Transform", QString::fromStdString(error));
+    return;
+  }
+  setStatus(rviz::StatusProperty::Ok, "Transform", "OK");
+  const RigidTransform to_fixed = RigidTransform::fromQuaternion(
+      orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
+  dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);
+  have_path_ = true;
+  rebuild();
+}
+
+void ProjectedPathDisplay::updateSpacing()
+{
+  spacer_.setParameters(spacingParameters());
+  rebuild();
+}
+
+void ProjectedPathDisplay::updateAppearance()
+{
+  redraw();
+}
+
+void ProjectedPathDisplay::updateStyle()
+{
+  redraw();
+}
+
+void ProjectedPathDisplay::checkGeometry(const SpacingParameters& p)
+{
+  if (p.mode == SpacingMode::Exact && p.spacing < p.arrow.length())
+  {
+    setStatus(rviz::StatusProperty::Warn, "Geometry",
+              QString("Spacing %1 m is shorter than an arrow (shaft + head = %2 m): arrows overlap")
+                  .arg(p.spacing, 0, 'g', 3)
+                  .arg(p.arrow.length(), 0, 'g', 3));
+  }
+  else if (p.arrow.head_diameter < p.arrow.shaft_diameter)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Geometry",
+              QString("Head diameter %1 m is narrower than the shaft (%2 m): arrows lose their heads")
+                  .arg(p.arrow.head_diameter, 0, 'g', 3)
+                  .arg(p.arrow.shaft_diameter, 0, 'g', 3));
+  }
+  else
+  {
+    deleteStatus("Geometry");
+  }
+}
+
+void ProjectedPathDisplay::rebuild()
+{
+  checkGeometry(spacer_.parameters());
+  if (!have_path_)
+  {
+    return;
+  }
+  spaced_ = &spacer_.space(floor_points_);
+  const std::size_t dropped = dropped_poses_ + spaced_->dropped_points;
+  if (!spaced_->has_destination)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Path",
+              dropped > 0 ? QString("All %1 poses have NaN/Inf values: nothing to draw").arg(dropped)
+                          : QString("Empty path (no poses): nothing to draw"));
+  }
+  else if (dropped > 0)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Path",
+              QString("%1 poses with NaN/Inf values dropped; %2 arrows drawn").arg(dropped).arg(spaced_->arrows.size()));
+  }
+  else if (spaced_->truncated)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Path",
+              QString("Path too long for the spacing: only the %1 arrows nearest the destination are drawn")
+                  .arg(spaced_->arrows.size()));
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Ok, "Path",
+              QString("%1 arrows on %2 m of path").arg(spaced_->arrows.size()).arg(spaced_->path_length, 0, 'f', 2));
+  }
+  redraw();
+}
+
+void ProjectedPathDisplay::redraw()
+{
+  if (!arrow_mesh_)
+  {
+    return;
+  }
+  const double height = height_property_->getFloat();
+  const float alpha = alpha_property_->getFloat();
+  Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
+  Ogre::ColourValue circle_colour = circle_color_property_->getOgreColor();
+  arrow_colour.a = alpha;
+  circle_colour.a = alpha;
+  const ArrowDimensions& dimensions = spacer_.parameters().arrow;
+
+  if (style_property_->getOptionInt() == kSolid)
+  {
+    solid_buffer_.clear();
+    solid_buffer_.reserve(spaced_->arrows.size() * ArrowSolid::kVerticesPerArrow);
+    for (const Arrow& arrow : spaced_->arrows)
+    {
+      ArrowSolid(arrow, dimensions).appendTriangles(solid_buffer_);
+    }
+    arrow_mesh_->setSolidTriangles(solid_buffer_, height + kArrowLift, arrow_colour);
+  }
+  else
+  {
+    flat_buffer_.clear();
+    flat_buffer_.reserve(spaced_->arrows.size() * ArrowOutline::kVerticesPerArrow);
+    for (const Arrow& arrow : spaced_->arrows)
+    {
+      ArrowOutline(arrow, dimensions).appendTriangles(flat_buffer_);
+    }
+    arrow_mesh_->setFlatTriangles(flat_buffer_, height + kArrowLift, arrow_colour);
+  }
+
+  flat_buffer_.clear();
+  if (spaced_->has_destination)
+  {
+    DiscOutline(spaced_->destination, spacer_.parameters().circle_diameter).appendTriangles(flat_buffer_);
+  }
+  circle_mesh_->setFlatTriangles(flat_buffer_, height, circle_colour);
+  context_->queueRender();
+}
+
+std::size_t ProjectedPathDisplay::arrowTriangleCount() const
+{
+  return arrow_mesh_ ? arrow_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::circleTriangleCount() const
+{
+  return circle_mesh_ ? circle_mesh_->triangleCount() : 0;
+}
+}  // namespace rviz_projector
+
+#include <pluginlib/class_list_macros.hpp>
+PLUGINLIB_EXPORT_CLASS(rviz_projector::ProjectedPathDisplay, rviz::Display)

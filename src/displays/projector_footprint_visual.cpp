@@ -1,0 +1,84 @@
+#include "rviz_projector/displays/projector_footprint_visual.h"
+
+#include <atomic>
+#include <string>
+
+#include <OgreManualObject.h>
+#include <OgreMaterialManager.h>
+#include <OgrePass.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <OgreTechnique.h>
+
+namespace rviz_projector
+{
+namespace
+{
+std::string uniqueName(const char* prefix)
+{
+  static std::atomic<unsigned> counter{0};
+  return std::string(prefix) + std::to_string(counter++);
+}
+
+Ogre::Vector3 toOgre(const Vec3& v)
+{
+  return Ogre::Vector3(static_cast<Ogre::Real>(v.x), static_cast<Ogre::Real>(v.y), static_cast<Ogre::Real>(v.z));
+}
+}  // namespace
+
+ProjectorFootprintVisual::ProjectorFootprintVisual(Ogre::SceneManager* scene_manager, Ogre::SceneNode* parent)
+  : scene_manager_(scene_manager)
+{
+  node_ = parent->createChildSceneNode();
+  lines_ = scene_manager_->createManualObject(uniqueName("rviz_projector_footprint_"));
+  lines_->setDynamic(true);
+  node_->attachObject(lines_);
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_footprint_material_"), "rviz");
+  Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
+  pass->setLightingEnabled(false);
+  pass->setVertexColourTracking(Ogre::TVC_DIFFUSE);
+}
+
+ProjectorFootprintVisual::~ProjectorFootprintVisual()
+{
+  node_->detachAllObjects();
+  scene_manager_->destroyManualObject(lines_);
+  scene_manager_->destroySceneNode(node_);
+  Ogre::MaterialManager::getSingleton().remove(material_->getName(), material_->getGroup());
+}
+
+void ProjectorFootprintVisual::update(const FloorFootprint& footprint)
+{
+  const Ogre::ColourValue frustum_colour(1.0f, 1.0f, 0.3f, 1.0f);
+  const Ogre::ColourValue floor_colour(0.3f, 1.0f, 1.0f, 1.0f);
+  lines_->clear();
+  lines_->begin(material_->getName(), Ogre::RenderOperation::OT_LINE_LIST, material_->getGroup());
+  const auto& c = footprint.corners();
+  for (int i = 0; i < 4; ++i)
+  {
+    lines_->position(toOgre(footprint.origin()));
+    lines_->colour(frustum_colour);
+    lines_->position(toOgre(c[i]));
+    lines_->colour(frustum_colour);
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    const Ogre::ColourValue& colour = footprint.complete() ? floor_colour : frustum_colour;
+    lines_->position(toOgre(c[i]));
+    lines_->colour(colour);
+    lines_->position(toOgre(c[(i + 1) % 4]));
+    lines_->colour(colour);
+  }
+  lines_->end();
+}
+
+void ProjectorFootprintVisual::setVisible(bool visible)
+{
+  node_->setVisible(visible);
+}
+
+void ProjectorFootprintVisual::setVisibilityFlags(std::uint32_t flags)
+{
+  lines_->setVisibilityFlags(flags);
+}
+}  // namespace rviz_projector

@@ -1,0 +1,52 @@
+#include "rviz_projector/displays/ros_conversions.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rviz_projector
+{
+bool isFinitePose(const geometry_msgs::Pose& pose)
+{
+  const double values[] = {pose.position.x,    pose.position.y,    pose.position.z,   pose.orientation.x,
+                           pose.orientation.y, pose.orientation.z, pose.orientation.w};
+  return std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); });
+}
+
+std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& path_to_target,
+                              std::vector<Vec2>& out)
+{
+  out.clear();
+  out.reserve(path.poses.size());
+  std::size_t dropped = 0;
+  for (const auto& stamped : path.poses)
+  {
+    if (!isFinitePose(stamped.pose))
+    {
+      ++dropped;
+      continue;
+    }
+    const geometry_msgs::Point& p = stamped.pose.position;
+    const Vec3 q = path_to_target.apply(Vec3{p.x, p.y, p.z});
+    out.push_back(Vec2{q.x, q.y});
+  }
+  return dropped;
+}
+
+LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info)
+{
+  LensCalibration c;
+  c.width = info.width;
+  c.height = info.height;
+  c.distortion_model = info.distortion_model;
+  c.D = info.D;
+  std::copy(info.K.begin(), info.K.end(), c.K.begin());
+  std::copy(info.P.begin(), info.P.end(), c.P.begin());
+  c.binning_x = info.binning_x;
+  c.binning_y = info.binning_y;
+  c.roi_x_offset = info.roi.x_offset;
+  c.roi_y_offset = info.roi.y_offset;
+  c.roi_width = info.roi.width;
+  c.roi_height = info.roi.height;
+  return c;
+}
+}  // namespace rviz_projector
