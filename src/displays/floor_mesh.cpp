@@ -4,6 +4,7 @@
 
 #include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
+#include <OgreResourceGroupManager.h>
 #include <OgrePass.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
@@ -27,7 +28,7 @@ FloorMesh::FloorMesh(Ogre::SceneManager* scene_manager, Ogre::SceneNode* parent)
   manual_ = scene_manager_->createManualObject(uniqueName("rviz_projector_mesh_"));
   manual_->setDynamic(true);
   node_->attachObject(manual_);
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_material_"), "rviz");
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
   material_->setReceiveShadows(false);
   material_->setCullingMode(Ogre::CULL_NONE);
 }

@@ -46,7 +46,10 @@ rviz::FloatProperty* sizeProperty(const QString& name, float value, const QStrin
 
 ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
 {
+  // Not yet initialised: set the default without triggering a resubscription.
+  topic_property_->blockSignals(true);
   topic_property_->setValue(kDefaultTopic);
+  topic_property_->blockSignals(false);
   const SpacingParameters defaults;
 
   mode_property_ = new rviz::EnumProperty(
@@ -112,6 +115,8 @@ ProjectedPathDisplay::~ProjectedPathDisplay() = default;
 void ProjectedPathDisplay::onInitialize()
 {
   MFDClass::onInitialize();
+  // Sees every message before the tf filter holds it back, to say at once why nothing is drawn.
+  sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   spacer_.setParameters(spacingParameters());
@@ -132,6 +137,10 @@ void ProjectedPathDisplay::onDisable()
 
 void ProjectedPathDisplay::reset()
 {
+  if (!initialized())
+  {
+    return;
+  }
   MFDClass::reset();
   have_path_ = false;
   floor_points_.clear();
@@ -159,6 +168,16 @@ SpacingParameters ProjectedPathDisplay::spacingParameters() const
   return p;
 }
 
+void ProjectedPathDisplay::checkFrame(const nav_msgs::Path::ConstPtr& msg)
+{
+  std::string error;
+  if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
+  {
+    setStatus(rviz::StatusProperty::Error, "Transform",
+              QString::fromStdString(error) + " (the path is drawn once the transform is available)");
+  }
+}
+
 void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
 {
   // The tf filter only lets a message through once its frame can be transformed; this lookup can
@@ -172,7 +191,7 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
     setStatus(rviz::StatusProperty::Error, "Transform", QString::fromStdString(error));
     return;
   }
-  setStatus(rviz::StatusProperty::Ok, "Transform", "OK");
+  setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");
   const RigidTransform to_fixed = RigidTransform::fromQuaternion(
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
   dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);

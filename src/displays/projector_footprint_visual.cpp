@@ -5,6 +5,7 @@
 
 #include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
+#include <OgreResourceGroupManager.h>
 #include <OgrePass.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
@@ -33,7 +34,7 @@ ProjectorFootprintVisual::ProjectorFootprintVisual(Ogre::SceneManager* scene_man
   lines_ = scene_manager_->createManualObject(uniqueName("rviz_projector_footprint_"));
   lines_->setDynamic(true);
   node_->attachObject(lines_);
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_footprint_material_"), "rviz");
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_footprint_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
   Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
   pass->setLightingEnabled(false);
   pass->setVertexColourTracking(Ogre::TVC_DIFFUSE);

@@ -1,0 +1,315 @@
+// ProjectedPath in a real rviz: created through pluginlib by class name, fed through its topic,
+// checked by the arrows it holds, its statuses and the pixels of a rendered top-down view.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <vector>
+
+#include <QDir>
+#include <QTemporaryDir>
+#include <nav_msgs/Path.h>
+#include <rviz/config.h>
+#include <rviz/display_group.h>
+#include <rviz/display.h>
+#include <rviz/visualization_manager.h>
+#include <rviz/yaml_config_reader.h>
+#include <rviz/yaml_config_writer.h>
+
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/displays/projected_path_display.h"
+#include "rviz_test_fixture.h"
+
+using rviz_projector::ProjectedPathDisplay;
+using rviz_projector_test::describe;
+using rviz_projector_test::RvizInstance;
+using rviz_projector_test::sameColour;
+using rviz_projector_test::Status;
+
+namespace
+{
+constexpr const char* kTopic = "/test/plan";
+const QRgb kMagenta = qRgb(255, 0, 255);
+const QRgb kGreen = qRgb(0, 255, 0);
+
+/// Straight path along +x of `frame` from 0 to `length`, unevenly sampled.
+nav_msgs::Path straightPath(const std::string& frame, double length)
+{
+  nav_msgs::Path path;
+  path.header.frame_id = frame;
+  path.header.stamp = ros::Time(0);
+  const double steps[] = {0.05, 0.013, 0.11, 0.07};
+  double x = 0.0;
+  for (int i = 0;; ++i)
+  {
+    geometry_msgs::PoseStamped pose;
+    pose.header = path.header;
+    pose.pose.position.x = x;
+    pose.pose.orientation.w = 1.0;
+    path.poses.push_back(pose);
+    if (x >= length)
+    {
+      break;
+    }
+    x = std::min(length, x + steps[i % 4]);
+  }
+  return path;
+}
+
+class ProjectedPathTest : public rviz_projector_test::RvizTest
+{
+protected:
+  void SetUp() override
+  {
+    RvizTest::SetUp();
+    // odom sits at (1, 0.5) in map, turned 90 degrees: odom's +x is map's +y.
+    publishStaticTransform("map", "odom", 1.0, 0.5, 0.0, M_PI / 2);
+    publisher_ = nh_.advertise<nav_msgs::Path>(kTopic, 1, true);
+    display_ = addPathDisplay(*rviz_);
+  }
+
+  ProjectedPathDisplay* addPathDisplay(RvizInstance& rviz)
+  {
+    rviz::Display* display = rviz.addDisplay("rviz_projector/ProjectedPath", "Projected path");
+    auto* path_display = dynamic_cast<ProjectedPathDisplay*>(display);
+    EXPECT_NE(path_display, nullptr) << "pluginlib did not give a ProjectedPathDisplay";
+    if (path_display)
+    {
+      path_display->subProp("Topic")->setValue(kTopic);
+      path_display->subProp("Spacing")->setValue(0.5);
+      path_display->subProp("Shaft length")->setValue(0.2);
+      path_display->subProp("Head length")->setValue(0.1);
+      path_display->subProp("Shaft diameter")->setValue(0.08);
+      path_display->subProp("Head diameter")->setValue(0.2);
+      path_display->subProp("Destination circle diameter")->setValue(0.3);
+    }
+    return path_display;
+  }
+
+  void publishAndWait(const nav_msgs::Path& path, std::size_t arrows)
+  {
+    publisher_.publish(path);
+    ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == arrows && received(); }))
+        << "got " << display_->spacedPath().arrows.size() << " arrows";
+  }
+
+  bool received() { return statusOf(display_, "Path").text != "No path received yet"; }
+
+  ros::Publisher publisher_;
+  ProjectedPathDisplay* display_ = nullptr;
+};
+}  // namespace
+
+TEST_F(ProjectedPathTest, CreatedThroughPluginlibWithDefaults)
+{
+  ASSERT_NE(display_, nullptr);
+  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "defaults");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->subProp("Topic")->getValue().toString().toStdString(), "/move_base/TrajectoryPlannerROS/global_plan");
+  EXPECT_EQ(d->subProp("Spacing mode")->getValue().toString().toStdString(), "Exact");
+  EXPECT_EQ(d->subProp("Style")->getValue().toString().toStdString(), "Flat");
+  const Status s = statusOf(d, "Path");
+  EXPECT_TRUE(s.present);
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_EQ(s.text.toStdString(), "No path received yet");
+}
+
+TEST_F(ProjectedPathTest, ArrowsLandAtTheirPositionsInTheFixedFrame)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  const auto& spaced = display_->spacedPath();
+  // Destination: odom (3.05, 0) -> map (1, 3.55). First tip 0.15 + 0.05 = 0.2 m back along the
+  // path, then every 0.5 m; tails 0.3 m behind their tips; 0.2 + 0.5 k + 0.3 <= 3.05 gives 6.
+  // Odom +x is map +y.
+  EXPECT_NEAR(spaced.destination.x, 1.0, 1e-6);
+  EXPECT_NEAR(spaced.destination.y, 3.55, 1e-6);
+  for (std::size_t k = 0; k < spaced.arrows.size(); ++k)
+  {
+    EXPECT_NEAR(spaced.arrows[k].tip.x, 1.0, 1e-6);
+    EXPECT_NEAR(spaced.arrows[k].tip.y, 3.35 - 0.5 * k, 1e-6) << k;
+    EXPECT_NEAR(spaced.arrows[k].tail.y, 3.05 - 0.5 * k, 1e-6) << k;
+  }
+  EXPECT_EQ(display_->arrowTriangleCount(), 6u * 3u);
+  EXPECT_GT(display_->circleTriangleCount(), 16u);
+  const Status s = statusOf(display_, "Path");
+  EXPECT_EQ(s.level, rviz::StatusProperty::Ok);
+  EXPECT_EQ(s.text.toStdString(), "6 arrows on 3.05 m of path");
+}
+
+TEST_F(ProjectedPathTest, RenderedTopDownViewShowsArrowsAndCircle)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  rviz_->setTopDownView(1.0, 2.0, 100.0);  // 1 cm per pixel; the path runs up the middle
+  spinFor(0.3);
+  const QImage image = rviz_->renderMainView();
+  ASSERT_FALSE(image.isNull());
+  const auto& arrows = display_->spacedPath().arrows;
+  const QRgb background = image.pixel(5, 5);
+  EXPECT_FALSE(sameColour(background, kMagenta));
+  for (std::size_t k = 0; k < arrows.size(); ++k)
+  {
+    // Middle of the shaft (tail + 0.1 m) and middle of the head's base area.
+    const QPoint shaft = rviz_->topDownPixel(1.0, arrows[k].tail.y + 0.1);
+    const QPoint head = rviz_->topDownPixel(1.0, arrows[k].tip.y - 0.03);
+    EXPECT_TRUE(sameColour(image.pixel(shaft), kMagenta)) << "arrow " << k << " shaft " << describe(image.pixel(shaft));
+    EXPECT_TRUE(sameColour(image.pixel(head), kMagenta)) << "arrow " << k << " head " << describe(image.pixel(head));
+    // Between this arrow's tail and the next tip (0.2 m gap): floor.
+    const QPoint gap = rviz_->topDownPixel(1.0, arrows[k].tail.y - 0.1);
+    EXPECT_FALSE(sameColour(image.pixel(gap), kMagenta)) << "gap after arrow " << k;
+    // Beside the shaft, outside the head width.
+    const QPoint beside = rviz_->topDownPixel(1.15, arrows[k].tail.y + 0.1);
+    EXPECT_TRUE(sameColour(image.pixel(beside), background)) << "beside arrow " << k;
+  }
+  const QPoint goal = rviz_->topDownPixel(1.0, 3.55);
+  EXPECT_TRUE(sameColour(image.pixel(goal), kGreen)) << describe(image.pixel(goal));
+  const QPoint beyond_goal = rviz_->topDownPixel(1.0, 3.55 + 0.2);
+  EXPECT_FALSE(sameColour(image.pixel(beyond_goal), kGreen));
+}
+
+TEST_F(ProjectedPathTest, PropertyChangesRedrawWithoutANewMessage)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  rviz_->setTopDownView(1.0, 2.0, 100.0);
+  display_->subProp("Spacing")->setValue(0.875);  // 0.2 + 0.875 k + 0.3 <= 3.05 -> 3 arrows
+  ASSERT_EQ(display_->spacedPath().arrows.size(), 3u);
+  EXPECT_NEAR(display_->spacedPath().arrows[1].tip.y, 3.35 - 0.875, 1e-6);
+
+  display_->subProp("Arrow color")->setValue(QColor(0, 0, 255));
+  spinFor(0.2);
+  const QImage image = rviz_->renderMainView();
+  const QPoint shaft = rviz_->topDownPixel(1.0, display_->spacedPath().arrows[1].tail.y + 0.1);
+  EXPECT_TRUE(sameColour(image.pixel(shaft), qRgb(0, 0, 255))) << describe(image.pixel(shaft));
+  // Where arrow 1 used to be with 0.5 m spacing (tip 2.85, tail 2.55) is floor now.
+  const QPoint old_arrow = rviz_->topDownPixel(1.0, 2.65);
+  EXPECT_FALSE(sameColour(image.pixel(old_arrow), qRgb(0, 0, 255)));
+
+  display_->subProp("Style")->setValue("3D");
+  EXPECT_EQ(display_->arrowTriangleCount(), 3u * 5u * 16u);
+  display_->subProp("Spacing mode")->setValue("Paper");
+  EXPECT_GT(display_->spacedPath().arrows.size(), 0u);
+}
+
+TEST_F(ProjectedPathTest, SpacingShorterThanAnArrowIsFlagged)
+{
+  display_->subProp("Spacing")->setValue(0.2);  // arrow is 0.3 m long
+  const Status s = statusOf(display_, "Geometry");
+  ASSERT_TRUE(s.present);
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_NE(s.text.indexOf("shorter than an arrow"), -1) << s.text.toStdString();
+  display_->subProp("Spacing")->setValue(1.0);
+  EXPECT_FALSE(statusOf(display_, "Geometry").present);
+  // Nonsense sizes are clamped to the minimum, never zero or negative.
+  display_->subProp("Head length")->setValue(-3.0);
+  EXPECT_GT(display_->subProp("Head length")->getValue().toDouble(), 0.0);
+  display_->subProp("Shaft diameter")->setValue(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_GT(display_->subProp("Shaft diameter")->getValue().toDouble(), 0.0);
+}
+
+TEST_F(ProjectedPathTest, ConfigRoundTripRestoresPropertiesAndArrows)
+{
+  display_->subProp("Spacing")->setValue(0.75);
+  display_->subProp("Arrow color")->setValue(QColor(10, 200, 30));
+  display_->subProp("Style")->setValue("3D");
+  display_->subProp("Height above floor")->setValue(0.05);
+  publishAndWait(straightPath("odom", 3.05), 4);
+
+  QTemporaryDir dir;
+  const QString file = dir.path() + "/saved.rviz";
+  rviz::Config saved;
+  rviz_->manager()->save(saved);
+  rviz::YamlConfigWriter().writeFile(saved, file);
+  const std::vector<rviz_projector::Arrow> before = display_->spacedPath().arrows;
+  std::map<std::string, std::string> properties;
+  const char* names[] = {"Topic", "Spacing mode", "Spacing", "Shaft length", "Shaft diameter", "Head length",
+                         "Head diameter", "Destination circle diameter", "Arrow color", "Circle color", "Alpha",
+                         "Height above floor", "Style"};
+  for (const char* name : names)
+  {
+    properties[name] = display_->subProp(name)->getValue().toString().toStdString();
+  }
+  rviz_.reset();  // close this rviz before starting the next
+
+  RvizInstance fresh(320, 240);
+  rviz::Config loaded;
+  rviz::YamlConfigReader reader;
+  reader.readFile(loaded, file);
+  ASSERT_FALSE(reader.error()) << reader.errorMessage().toStdString();
+  fresh.manager()->load(loaded);
+  rviz::Display* d = nullptr;
+  ASSERT_TRUE(waitFor([&] {
+    for (int i = 0; i < fresh.manager()->getRootDisplayGroup()->numDisplays(); ++i)
+    {
+      auto* p = dynamic_cast<ProjectedPathDisplay*>(fresh.manager()->getRootDisplayGroup()->getDisplayAt(i));
+      if (p && p->spacedPath().arrows.size() == 4)
+      {
+        d = p;
+      }
+    }
+    return d != nullptr;
+  }));
+  for (const char* name : names)
+  {
+    EXPECT_EQ(d->subProp(name)->getValue().toString().toStdString(), properties[name]) << name;
+  }
+  EXPECT_EQ(properties["Spacing"], "0.75");
+  EXPECT_EQ(properties["Style"], "3D");
+  const auto& a = dynamic_cast<ProjectedPathDisplay*>(d)->spacedPath().arrows;
+  const auto& b = before;
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    EXPECT_DOUBLE_EQ(a[k].tip.x, b[k].tip.x);
+    EXPECT_DOUBLE_EQ(a[k].tip.y, b[k].tip.y);
+    EXPECT_DOUBLE_EQ(a[k].tail.y, b[k].tail.y);
+  }
+}
+
+TEST_F(ProjectedPathTest, EmptyPathIsReportedAndClearsTheDrawing)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  nav_msgs::Path empty;
+  empty.header.frame_id = "odom";
+  publisher_.publish(empty);
+  ASSERT_TRUE(waitFor([&] { return statusOf(display_, "Path").text.startsWith("Empty path"); }));
+  const Status s = statusOf(display_, "Path");
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_EQ(s.text.toStdString(), "Empty path (no poses): nothing to draw");
+  EXPECT_EQ(display_->arrowTriangleCount(), 0u);
+  EXPECT_EQ(display_->circleTriangleCount(), 0u);
+}
+
+TEST_F(ProjectedPathTest, NanPosesAreDroppedWithAWarning)
+{
+  nav_msgs::Path path = straightPath("odom", 3.05);
+  path.poses[3].pose.position.y = std::numeric_limits<double>::quiet_NaN();
+  path.poses[7].pose.orientation.z = std::numeric_limits<double>::infinity();
+  publishAndWait(path, 6);
+  const Status s = statusOf(display_, "Path");
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_EQ(s.text.toStdString(), "2 poses with NaN/Inf values dropped; 6 arrows drawn");
+
+  nav_msgs::Path one = straightPath("odom", 0.0);
+  ASSERT_EQ(one.poses.size(), 1u);
+  publishAndWait(one, 0);
+  EXPECT_EQ(display_->circleTriangleCount(), 48u);  // the destination circle alone
+}
+
+TEST_F(ProjectedPathTest, UnknownFrameIsReportedAndRecoversWhenTheFrameAppears)
+{
+  nav_msgs::Path path = straightPath("late_frame", 2.05);
+  path.header.stamp = ros::Time::now();
+  publisher_.publish(path);
+  ASSERT_TRUE(waitFor([&] {
+    const Status s = statusOf(display_, "Transform");
+    return s.present && s.level == rviz::StatusProperty::Error;
+  }));
+  const Status s = statusOf(display_, "Transform");
+  EXPECT_NE(s.text.indexOf("late_frame"), -1) << s.text.toStdString();
+  EXPECT_EQ(display_->spacedPath().arrows.size(), 0u);
+  // The frame shows up: the queued path goes through by itself.
+  publishStaticTransform("map", "late_frame", 0.0, 0.0, 0.0, 0.0);
+  publisher_.publish(path);
+  ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 4; }, 8.0));
+  EXPECT_EQ(statusOf(display_, "Transform").level, rviz::StatusProperty::Ok);
+}

@@ -48,6 +48,8 @@ protected:
   void onEnable() override;
   void onDisable() override;
   void processMessage(const nav_msgs::Path::ConstPtr& msg) override;
+  /// Reports a path whose frame cannot be transformed (yet) to the fixed frame.
+  void checkFrame(const nav_msgs::Path::ConstPtr& msg);
 
 private Q_SLOTS:
   void updateSpacing();
