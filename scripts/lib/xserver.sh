@@ -50,6 +50,12 @@
 #   - Call xserver_start directly in your shell, not in $(...) or a pipeline: it exports
 #     DISPLAY and remembers the server in shell variables.
 #   - The server is `disown`ed: a plain `wait` in the caller does not wait for it.
+#   - Xorg is run as: Xorg :N -noreset -nolisten tcp -novtswitch -sharevts +extension GLX
+#     +extension RANDR +extension RENDER -logfile LOG -config xorg-dummy.conf -configdir EMPTY.
+#     -sharevts/-novtswitch keep it off the console's virtual terminals (without them it
+#     grabs a free VT, which on a workstation switches the screen to it); -configdir points
+#     at a private empty dir so /etc/X11/xorg.conf.d snippets are not read. Xvfb gets
+#     -noreset as well (no server reset when the last client disconnects).
 #   - No X authority is set up (like a bare Xvfb): any local client can connect.
 #   - Concurrent starts (several scripts/CI jobs) are serialised with flock on
 #     /tmp/.xserver-sh.lock while a display number is picked; a start that still loses a

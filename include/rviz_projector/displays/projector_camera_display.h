@@ -58,8 +58,6 @@ public:
   void reset() override;
   void setTopic(const QString& topic, const QString& datatype) override;
 
-  /// Renders the projector view now (the timer does this at the frame rate limit).
-  void renderNow();
   /// Renders a frame and copies it (RGB, rows top down, whole window) before it is shown.
   bool grabFrame(std::vector<std::uint8_t>& rgb, unsigned& width, unsigned& height);
   /// The output window (nullptr while the display has never been enabled).
@@ -82,6 +80,10 @@ protected:
 
   // Ogre::RenderTargetListener
   void preRenderTargetUpdate(const Ogre::RenderTargetEvent& event) override;
+
+public Q_SLOTS:
+  /// Renders the projector view now (the timer does this at the frame rate limit).
+  void renderNow();
 
 private Q_SLOTS:
   void updateTopic();

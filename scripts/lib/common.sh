@@ -1,0 +1,78 @@
+# Shared by scripts/demo, scripts/test and scripts/bench: system packages, catkin workspace, build.
+# Source it; it expects `set -euo pipefail` in the caller.
+
+RP_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+RP_WS="${RP_WS:-$RP_ROOT/.ws}"
+# A pyenv (or other) python3 first on PATH lacks catkin_pkg: ROS tools must run with the system one.
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
+
+rp_log() { printf '\033[1m[rviz_projector]\033[0m %s\n' "$*" >&2; }
+
+# Debian 12 packages ROS 1 in /usr; Ubuntu 20.04 gets it from packages.ros.org as ros-noetic-*.
+rp_is_noetic_ubuntu() { [ -f /opt/ros/noetic/setup.bash ] || grep -q 'VERSION_CODENAME=focal' /etc/os-release 2>/dev/null; }
+
+rp_packages() {
+  local common="build-essential cmake xvfb xauth x11-utils x11-xserver-utils x11-apps imagemagick
+    libgl1-mesa-dri mesa-utils xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
+    libbenchmark-dev qtbase5-dev"
+  if rp_is_noetic_ubuntu; then
+    echo "$common python3-catkin-pkg ros-noetic-catkin ros-noetic-roscpp ros-noetic-rviz ros-noetic-pluginlib
+      ros-noetic-nav-msgs ros-noetic-sensor-msgs ros-noetic-geometry-msgs ros-noetic-visualization-msgs
+      ros-noetic-std-msgs ros-noetic-tf2 ros-noetic-tf2-ros ros-noetic-tf2-geometry-msgs ros-noetic-rostest
+      ros-noetic-roslaunch ros-noetic-rosbash ros-noetic-image-view ros-noetic-rostopic ros-noetic-camera-calibration-parsers"
+  else
+    echo "$common catkin python3-catkin-pkg python3-rospkg python3-empy ros-message-generation
+      libroscpp-dev librviz-dev rviz pluginlib-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
+      libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
+      librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic
+      rosbash libimage-view-dev libnodeletlib-tools catkin-lint libcamera-calibration-parsers-dev"
+  fi
+}
+
+# Installs whatever is missing, by explicit name (rosdep has no index here).
+rp_install_deps() {
+  local missing=()
+  local p
+  for p in $(rp_packages); do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  rp_log "installing ${#missing[@]} system packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+}
+
+rp_source_ros() {
+  if [ -f /opt/ros/noetic/setup.bash ]; then
+    set +u
+    # shellcheck disable=SC1091
+    source /opt/ros/noetic/setup.bash
+    set -u
+  fi
+}
+
+# Builds the package in $RP_WS (the repository linked in as src/rviz_projector). Extra arguments
+# go to CMake (e.g. -DRVIZ_PROJECTOR_SANITIZE=ON). Quick when nothing changed.
+rp_build() {
+  rp_source_ros
+  mkdir -p "$RP_WS/src"
+  [ -L "$RP_WS/src/rviz_projector" ] || ln -sfn "$RP_ROOT" "$RP_WS/src/rviz_projector"
+  rp_log "building in $RP_WS"
+  (cd "$RP_WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DCATKIN_ENABLE_TESTING=ON "$@" -j"$(nproc)" >"$RP_WS/build.log" 2>&1) || {
+    tail -n 60 "$RP_WS/build.log" >&2
+    rp_log "build failed (full log: $RP_WS/build.log)"
+    return 1
+  }
+  set +u
+  # shellcheck disable=SC1091
+  source "$RP_WS/devel/setup.bash"
+  set -u
+}
+
+# A free TCP port for a private ROS master.
+rp_free_port() {
+  /usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1]); s.close()'
+}
