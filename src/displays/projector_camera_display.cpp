@@ -569,14 +569,21 @@ void ProjectorCameraDisplay::updateOutput()
     setStatus(rviz::StatusProperty::Warn, "Output", why + ": output window hidden until a screen appears");
     return;
   }
-  window_->present(screen, image_size);
-  QString text = QString("%1 on %2").arg(window_->isFullScreenOn() ? "Full screen" : "Window").arg(screenLabel(screen));
-  if (full_screen_property_->getBool() && single_screen)
+  window_->present(screen, image_size, single_screen);
+  const QString text =
+      QString("%1 on %2").arg(window_->isFullScreenOn() ? "Full screen" : "Window").arg(screenLabel(screen));
+  if (single_screen)
   {
-    text += " (only one screen: windowed so as not to cover rviz)";
+    // Also what a user sees right after unplugging the projector.
+    setStatus(rviz::StatusProperty::Warn, "Output",
+              (why.isEmpty() ? QString() : why + "; ") + "only one screen is connected: " + text +
+                  ", in a corner so as not to cover rviz (connect the projector as an extended desktop)");
   }
-  setStatus(why.isEmpty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Output",
-            why.isEmpty() ? text : why + "; using " + text);
+  else
+  {
+    setStatus(why.isEmpty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Output",
+              why.isEmpty() ? text : why + "; using " + text);
+  }
 }
 
 void ProjectorCameraDisplay::onScreensChanged()

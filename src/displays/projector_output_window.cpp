@@ -33,7 +33,7 @@ Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
   return render_widget_->getRenderWindow();
 }
 
-void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size)
+void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size, bool corner)
 {
   if (!windowHandle())
   {
@@ -61,8 +61,9 @@ void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size)
     if (screen)
     {
       const QRect available = screen->availableGeometry();
-      size.scale(size.boundedTo(available.size() * 0.8), Qt::KeepAspectRatio);
-      const QPoint origin = available.center() - QPoint(size.width() / 2, size.height() / 2);
+      size.scale(size.boundedTo(available.size() * (corner ? 0.5 : 0.8)), Qt::KeepAspectRatio);
+      const QPoint origin = corner ? available.bottomRight() - QPoint(size.width() - 1, size.height() - 1)
+                                   : available.center() - QPoint(size.width() / 2, size.height() / 2);
       setGeometry(QRect(origin, size));
     }
     else

@@ -4,10 +4,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include <QApplication>
 #include <QGuiApplication>
 #include <QImage>
 #include <QScreen>
@@ -283,14 +285,19 @@ protected:
     EXPECT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
     spinFor(0.5);
     const QImage image = imagePart(grab());
-    EXPECT_EQ(image.width(), int(info.width));
-    EXPECT_EQ(image.height(), int(info.height));
+    // The image fills the window (letterboxed when the aspect ratios differ): scale the pinhole
+    // prediction from image pixels to window pixels, report errors in image pixels.
+    const double sx = double(image.width()) / info.width;
+    const double sy = double(image.height()) / info.height;
+    EXPECT_NEAR(sx, sy, 0.01) << "never stretched";
+    auto toWindow = [sx, sy](const Vec2& p) { return Vec2{(p.x + 0.5) * sx - 0.5, (p.y + 0.5) * sy - 0.5}; };
+    std::printf("  image %ux%u shown as %dx%d\n", info.width, info.height, image.width(), image.height());
     double worst = 0.0;
     for (std::size_t i = 0; i < pixels.size(); ++i)
     {
       const Vec2 floor = floorPointAt(lens, m, pixels[i]);
       const Vec2 centre = pixelOf(lens, m, floor);
-      const Vec2 expected = projectedDiscCentroid(lens, m, floor, diameters[i]);
+      const Vec2 expected = toWindow(projectedDiscCentroid(lens, m, floor, diameters[i]));
       Vec2 centroid;
       int count = 0;
       const bool found = greenCentroid(image, expected, 60, centroid, count);
@@ -300,7 +307,7 @@ protected:
         worst = std::numeric_limits<double>::infinity();
         continue;
       }
-      const double error = std::hypot(centroid.x - expected.x, centroid.y - expected.y);
+      const double error = std::hypot((centroid.x - expected.x) / sx, (centroid.y - expected.y) / sy);
       std::printf("  target %zu: centre projects to (%.3f, %.3f), disc centroid (%.3f, %.3f), rendered "
                   "(%.3f, %.3f) from %d px: error %.3f px\n",
                   i, centre.x, centre.y, expected.x, expected.y, centroid.x, centroid.y, count, error);
@@ -353,4 +360,402 @@ TEST_F(ProjectorCameraTest, PixelAccuracyRolledAndYawedMount)
                                      {{512, 384}, {50, 50}, {980, 60}, {990, 720}, {40, 730}});
   std::printf("rolled and yawed mount: max error %.3f px\n", worst);
   EXPECT_LE(worst, 0.25);
+}
+
+namespace
+{
+const QRgb kBlack = qRgb(0, 0, 0);
+const QRgb kArrowMagenta = qRgb(255, 0, 255);
+
+int visibleProjectorWindows()
+{
+  int n = 0;
+  for (QWidget* w : QApplication::topLevelWidgets())
+  {
+    if (qobject_cast<rviz_projector::ProjectorOutputWindow*>(w) && w->isVisible())
+    {
+      ++n;
+    }
+  }
+  return n;
+}
+
+int countColour(const QImage& image, QRgb colour)
+{
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+  {
+    for (int x = 0; x < image.width(); ++x)
+    {
+      n += rviz_projector_test::sameColour(image.pixel(x, y), colour, 30) ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+QScreen* screenNamed(const QString& name)
+{
+  for (QScreen* s : QGuiApplication::screens())
+  {
+    if (s->name() == name)
+    {
+      return s;
+    }
+  }
+  return nullptr;
+}
+
+/// A demo-like set-up: 1280x800 projector 1.2 m up, pitched down 0.9 rad, looking along +x.
+const Mount kDemoMount = bodyMount({0.0, 0.0, 1.2}, 0.0, 0.9, 0.0);
+}  // namespace
+
+class ProjectorSceneTest : public ProjectorCameraTest
+{
+protected:
+  void SetUp() override
+  {
+    ProjectorCameraTest::SetUp();
+    ASSERT_TRUE(PinholeModel::fromCalibration(rviz_projector_test_lens(info_), lens_).ok());
+    mount(kDemoMount);
+    info_pub_.publish(info_);
+    ASSERT_TRUE(waitFor([&] { return projector_->hasLens(); }));
+    ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  }
+
+  rviz_projector::ProjectedPathDisplay* addPath(const std::string& topic, const std::vector<Vec2>& points)
+  {
+    rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
+    d->subProp("Topic")->setValue(QString::fromStdString(topic));
+    path_pub_ = nh_.advertise<nav_msgs::Path>(topic, 1, true);
+    nav_msgs::Path path;
+    path.header.frame_id = "map";
+    for (const Vec2& p : points)
+    {
+      geometry_msgs::PoseStamped pose;
+      pose.header = path.header;
+      pose.pose.position.x = p.x;
+      pose.pose.position.y = p.y;
+      pose.pose.orientation.w = 1;
+      path.poses.push_back(pose);
+    }
+    path_pub_.publish(path);
+    auto* display = dynamic_cast<rviz_projector::ProjectedPathDisplay*>(d);
+    EXPECT_TRUE(waitFor([&] { return display && !display->spacedPath().arrows.empty(); }));
+    return display;
+  }
+
+  /// Where the pinhole model puts a floor point in the (possibly scaled) projector image.
+  Vec2 windowPixel(const Vec2& floor, const Mount& m = kDemoMount)
+  {
+    int left, top, width, height;
+    projector_->viewportPixels(left, top, width, height);
+    const Vec2 px = pixelOf(lens_, m, floor);
+    return Vec2{(px.x + 0.5) * width / lens_.width() - 0.5, (px.y + 0.5) * height / lens_.height() - 0.5};
+  }
+
+  sensor_msgs::CameraInfo info_ = cameraInfo(1280, 800, 1300, 639.5, 399.5);
+  PinholeModel lens_;
+  ros::Publisher path_pub_;
+};
+
+TEST_F(ProjectorSceneTest, ArrowsReachTheProjectorAndVisibilityHidesThem)
+{
+  std::vector<Vec2> points;
+  for (double x = 0.5; x <= 2.3; x += 0.037)
+  {
+    points.push_back({x, 0.05 * std::sin(2 * x)});
+  }
+  auto* path = addPath("/test/plan", points);
+  ASSERT_NE(path, nullptr);
+  spinFor(0.3);
+  const QImage frame = imagePart(grab());
+  ASSERT_FALSE(frame.isNull());
+  int checked = 0;
+  const auto& arrows = path->spacedPath().arrows;
+  for (std::size_t k = 0; k < arrows.size(); ++k)
+  {
+    // Middle of the shaft: 30% of the way from tail to tip, on the arrow's axis.
+    const Vec2 shaft = arrows[k].tail + (arrows[k].tip - arrows[k].tail) * 0.3;
+    const Vec2 px = windowPixel(shaft);
+    if (px.x < 2 || px.y < 2 || px.x > frame.width() - 3 || px.y > frame.height() - 3)
+    {
+      continue;  // outside the lit area
+    }
+    EXPECT_TRUE(rviz_projector_test::sameColour(frame.pixel(int(std::lround(px.x)), int(std::lround(px.y))),
+                                                kArrowMagenta, 30))
+        << "arrow " << k << " at pixel " << px.x << "," << px.y;
+    // Halfway between this arrow's tail and the next arrow's tip: floor, i.e. black.
+    if (k + 1 < arrows.size())
+    {
+      const Vec2 gap = windowPixel(arrows[k].tail + (arrows[k + 1].tip - arrows[k].tail) * 0.5);
+      EXPECT_TRUE(rviz_projector_test::sameColour(frame.pixel(int(std::lround(gap.x)), int(std::lround(gap.y))),
+                                                  kBlack, 30))
+          << "gap after arrow " << k;
+    }
+    // Well beside the path: black.
+    const Vec2 beside = windowPixel(shaft + Vec2{0.0, 0.25});
+    if (beside.x > 0 && beside.y > 0 && beside.x < frame.width() && beside.y < frame.height())
+    {
+      EXPECT_EQ(frame.pixel(int(beside.x), int(beside.y)), kBlack);
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 3) << "the demo set-up should show several arrows";
+  EXPECT_GT(countColour(frame, kArrowMagenta), 500);
+
+  // Untick the path in the projector's Visibility: the projection goes all black.
+  rviz::Property* visibility = projector_->subProp("Visibility");
+  rviz::Property* entry = visibility->subProp("Projected path");
+  ASSERT_NE(entry->getName(), QString()) << "Visibility lists the path display";
+  entry->setValue(false);
+  const QImage hidden = imagePart(grab());
+  EXPECT_EQ(countColour(hidden, kArrowMagenta), 0);
+  EXPECT_EQ(countColour(hidden, kBlack), hidden.width() * hidden.height());
+}
+
+TEST_F(ProjectorSceneTest, OnlyThisPackagesPathDisplaysAreVisibleByDefault)
+{
+  rviz_->addDisplay("rviz/Grid", "Grid");
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  rviz::Property* visibility = projector_->subProp("Visibility");
+  EXPECT_EQ(visibility->subProp("Grid")->getValue().toBool(), false);
+  EXPECT_EQ(visibility->subProp("Projected path")->getValue().toBool(), true);
+  // The grid lies on the floor in the projector's view; it must not be projected.
+  rviz::Display* grid = nullptr;
+  for (int i = 0; i < rviz_->manager()->getRootDisplayGroup()->numDisplays(); ++i)
+  {
+    if (rviz_->manager()->getRootDisplayGroup()->getDisplayAt(i)->getName() == "Grid")
+    {
+      grid = rviz_->manager()->getRootDisplayGroup()->getDisplayAt(i);
+    }
+  }
+  ASSERT_NE(grid, nullptr);
+  grid->subProp("Color")->setValue(QColor(255, 255, 0));
+  const QImage frame = imagePart(grab());
+  EXPECT_EQ(countColour(frame, qRgb(255, 255, 0)), 0);
+}
+
+TEST_F(ProjectorSceneTest, MovingProjectorKeepsAWorldTargetOnItsProjection)
+{
+  addTarget({1.2, 0.1}, 0.03);
+  ASSERT_TRUE(waitFor([&] { return targetsReady(); }));
+  for (double dx : {0.0, 0.07, -0.05})
+  {
+    Mount moved = kDemoMount;
+    moved.position.x += dx;
+    mount(moved);
+    spinFor(0.2);
+    const QImage frame = imagePart(grab());
+    const Vec2 expected = windowPixel({1.2, 0.1}, moved);
+    Vec2 centroid;
+    int count = 0;
+    ASSERT_TRUE(greenCentroid(frame, expected, 40, centroid, count)) << "dx " << dx;
+    EXPECT_NEAR(centroid.x, expected.x, 1.0) << "dx " << dx;
+    EXPECT_NEAR(centroid.y, expected.y, 1.0) << "dx " << dx;
+  }
+}
+
+TEST_F(ProjectorSceneTest, BadCameraInfoIsReportedAndShowsBackgroundOnly)
+{
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  struct Case
+  {
+    const char* what;
+    std::function<void(sensor_msgs::CameraInfo&)> spoil;
+    const char* status;
+  };
+  const Case cases[] = {
+      {"zero width", [](sensor_msgs::CameraInfo& i) { i.width = 0; }, "image size is 0x800"},
+      {"zero height", [](sensor_msgs::CameraInfo& i) { i.height = 0; }, "image size is 1280x0"},
+      {"NaN focal length", [nan](sensor_msgs::CameraInfo& i) { i.P[0] = nan; }, "P[0] is not finite"},
+      {"zero focal length", [](sensor_msgs::CameraInfo& i) { i.P[0] = 0; }, "focal length in P is not positive"},
+      {"negative focal length", [](sensor_msgs::CameraInfo& i) { i.P[5] = -1300; }, "focal length in P is not positive"},
+      {"K and P zero", [](sensor_msgs::CameraInfo& i) { i.K.fill(0); i.P.fill(0); }, "P and K are all zero"},
+      {"giant image", [](sensor_msgs::CameraInfo& i) { i.width = 20000; i.height = 20000; }, "exceeds the 16384x16384"},
+      {"NaN in K with zero P", [nan](sensor_msgs::CameraInfo& i) { i.P.fill(0); i.K[2] = nan; }, "K[2] is not finite"},
+  };
+  for (const Case& c : cases)
+  {
+    sensor_msgs::CameraInfo bad = info_;
+    c.spoil(bad);
+    info_pub_.publish(bad);
+    ASSERT_TRUE(waitFor([&] { return !projector_->hasLens(); })) << c.what;
+    const Status s = statusOf(projector_, "CameraInfo");
+    EXPECT_EQ(s.level, rviz::StatusProperty::Error) << c.what;
+    EXPECT_NE(s.text.indexOf(c.status), -1) << c.what << ": " << s.text.toStdString();
+    const QImage frame = imagePart(grab());
+    EXPECT_EQ(countColour(frame, kBlack), frame.width() * frame.height()) << c.what << ": background only";
+    EXPECT_FALSE(rviz_->renderMainView().isNull()) << "rviz keeps rendering";
+    info_pub_.publish(info_);  // good again
+    ASSERT_TRUE(waitFor([&] { return projector_->hasLens(); })) << c.what;
+  }
+  // P all zero falls back to K, with the same picture.
+  sensor_msgs::CameraInfo k_only = info_;
+  k_only.P.fill(0);
+  info_pub_.publish(k_only);
+  spinFor(0.3);
+  EXPECT_TRUE(projector_->hasLens());
+  EXPECT_EQ(statusOf(projector_, "CameraInfo").level, rviz::StatusProperty::Ok);
+  EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100);
+
+  // Distortion is reported, not applied.
+  sensor_msgs::CameraInfo distorted = info_;
+  distorted.D = {0.1, -0.05, 0, 0, 0};
+  info_pub_.publish(distorted);
+  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").present; }));
+  EXPECT_EQ(statusOf(projector_, "Distortion").level, rviz::StatusProperty::Warn);
+}
+
+TEST_F(ProjectorSceneTest, UnknownFrameIsAnErrorAndBlanksTheView)
+{
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  sensor_msgs::CameraInfo lost = info_;
+  lost.header.frame_id = "nowhere_optical";
+  info_pub_.publish(lost);
+  ASSERT_TRUE(waitFor([&] {
+    const Status s = statusOf(projector_, "Transform");
+    return s.present && s.level == rviz::StatusProperty::Error;
+  }, 5.0)) << statusOf(projector_, "Transform").text.toStdString();
+  projector_->renderNow();
+  const Status s = statusOf(projector_, "Transform");
+  EXPECT_NE(s.text.indexOf("nowhere_optical"), -1) << s.text.toStdString();
+  const QImage frame = imagePart(grab());
+  EXPECT_EQ(countColour(frame, kBlack), frame.width() * frame.height());
+  // The Frame property overrides the header's frame.
+  projector_->subProp("Frame")->setValue(kOpticalFrame);
+  const QImage fixed = imagePart(grab());
+  EXPECT_GT(countColour(fixed, kArrowMagenta), 100);
+  EXPECT_EQ(statusOf(projector_, "Transform").level, rviz::StatusProperty::Ok);
+}
+
+TEST_F(ProjectorSceneTest, StaleCameraInfoStampStillRenders)
+{
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  sensor_msgs::CameraInfo old = info_;
+  old.header.stamp = ros::Time(1.0);  // far in the past, as a latched CameraInfo often is
+  info_pub_.publish(old);
+  spinFor(0.3);
+  EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100);
+}
+
+TEST_F(ProjectorSceneTest, FootprintStatusGivesTheLitArea)
+{
+  projector_->renderNow();
+  const Status s = statusOf(projector_, "Footprint");
+  ASSERT_TRUE(s.present);
+  EXPECT_EQ(s.level, rviz::StatusProperty::Ok);
+  EXPECT_TRUE(s.text.startsWith("Lit floor area")) << s.text.toStdString();
+  // Aim above the horizon: part of the image misses the floor.
+  mount(bodyMount({0.0, 0.0, 1.2}, 0.0, 0.1, 0.0));
+  spinFor(0.2);
+  projector_->renderNow();
+  EXPECT_EQ(statusOf(projector_, "Footprint").level, rviz::StatusProperty::Warn);
+}
+
+TEST_F(ProjectorSceneTest, TestPatternDrawsAMetricGrid)
+{
+  projector_->subProp("Test pattern")->setValue(true);
+  projector_->renderNow();
+  const QImage frame = imagePart(grab());
+  // Bold metre line x = 1 m across the floor: white at its projection.
+  const Vec2 on_line = windowPixel({1.0, 0.0});
+  Vec2 off_line = windowPixel({1.05, 0.03});
+  EXPECT_TRUE(rviz_projector_test::sameColour(frame.pixel(int(std::lround(on_line.x)), int(std::lround(on_line.y))),
+                                              qRgb(255, 255, 255), 30));
+  EXPECT_EQ(frame.pixel(int(std::lround(off_line.x)), int(std::lround(off_line.y))), kBlack);
+  EXPECT_GT(countColour(frame, qRgb(255, 255, 255)), 2000);
+  projector_->subProp("Test pattern")->setValue(false);
+  EXPECT_EQ(countColour(imagePart(grab()), qRgb(255, 255, 255)), 0);
+}
+
+TEST_F(ProjectorCameraTest, LifecycleLeavesNoStrayWindowsAndNoVisibilityBitLeak)
+{
+  info_pub_.publish(cameraInfo(640, 400, 600, 319.5, 199.5));
+  ASSERT_TRUE(waitFor([&] { return visibleProjectorWindows() == 1; }));
+  projector_->setEnabled(false);
+  ASSERT_TRUE(waitFor([&] { return visibleProjectorWindows() == 0; }));
+  projector_->setEnabled(true);
+  ASSERT_TRUE(waitFor([&] { return visibleProjectorWindows() == 1; }));
+
+  // Two projectors: two windows, two visibility bits.
+  auto* second = dynamic_cast<ProjectorCameraDisplay*>(rviz_->addDisplay("rviz_projector/ProjectorCamera", "P2"));
+  ASSERT_NE(second, nullptr);
+  second->subProp("Topic")->setValue(kInfoTopic);
+  ASSERT_TRUE(waitFor([&] { return visibleProjectorWindows() == 2; }));
+  EXPECT_NE(second->visibilityBit(), 0u);
+  EXPECT_NE(second->visibilityBit(), projector_->visibilityBit());
+  delete second;
+  ASSERT_TRUE(waitFor([&] { return visibleProjectorWindows() == 1; }));
+
+  // Many add/remove cycles: visibility bits are freed (there are only 32).
+  for (int i = 0; i < 40; ++i)
+  {
+    rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectorCamera", "cycle");
+    auto* p = dynamic_cast<ProjectorCameraDisplay*>(d);
+    ASSERT_NE(p, nullptr);
+    ASSERT_NE(p->visibilityBit(), 0u) << "cycle " << i;
+    d->setEnabled(false);
+    d->setEnabled(true);
+    QApplication::processEvents();
+    delete d;
+  }
+  spinFor(0.2);
+  EXPECT_EQ(visibleProjectorWindows(), 1);
+  delete projector_;
+  projector_ = nullptr;
+  spinFor(0.2);
+  EXPECT_EQ(visibleProjectorWindows(), 0);
+}
+
+TEST_F(ProjectorCameraTest, FullScreenOnTheProjectorScreenFollowsUnplugAndReplug)
+{
+  if (QGuiApplication::screens().size() < 2 || !screenNamed("DUMMY1"))
+  {
+    GTEST_SKIP() << "needs the two-screen dummy X server (scripts/test starts one)";
+  }
+  info_pub_.publish(cameraInfo(1280, 800, 1300, 639.5, 399.5));
+  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && visibleProjectorWindows() == 1; }));
+  rviz_projector::ProjectorOutputWindow* window = projector_->outputWindow();
+  // Automatic: the screen rviz is not on (rviz is on the primary, DUMMY0).
+  ASSERT_TRUE(waitFor([&] { return window->geometry() == screenNamed("DUMMY1")->geometry(); }))
+      << "window at " << window->geometry().x() << "," << window->geometry().y();
+  EXPECT_TRUE(window->isFullScreenOn());
+  EXPECT_EQ(statusOf(projector_, "Output").level, rviz::StatusProperty::Ok);
+  int left, top, width, height;
+  projector_->viewportPixels(left, top, width, height);
+  EXPECT_EQ(width, 1280);
+  EXPECT_EQ(height, 800);  // 1:1 on a 1280x800 screen
+
+  // Unplug the projector: the window goes to the remaining screen, windowed, with a warning.
+  ASSERT_EQ(std::system("xrandr --output DUMMY1 --off"), 0);
+  ASSERT_TRUE(waitFor([&] { return QGuiApplication::screens().size() == 1; }, 5.0));
+  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Output").level == rviz::StatusProperty::Warn; }));
+  window = projector_->outputWindow();
+  ASSERT_NE(window, nullptr);
+  EXPECT_FALSE(window->isFullScreenOn()) << "never cover rviz on the only screen";
+  EXPECT_TRUE(QGuiApplication::primaryScreen()->geometry().contains(window->geometry()));
+  EXPECT_FALSE(rviz_->renderMainView().isNull()) << "rviz keeps running";
+
+  // Plug it back in: full screen on it again.
+  ASSERT_EQ(std::system("xrandr --output DUMMY1 --mode 1280x800_60 --right-of DUMMY0"), 0);
+  ASSERT_TRUE(waitFor([&] { return screenNamed("DUMMY1") != nullptr; }, 5.0));
+  ASSERT_TRUE(waitFor([&] {
+    return projector_->outputWindow()->isFullScreenOn() &&
+           projector_->outputWindow()->geometry() == screenNamed("DUMMY1")->geometry();
+  }));
+  EXPECT_EQ(statusOf(projector_, "Output").level, rviz::StatusProperty::Ok);
+
+  // An explicit choice of a screen that does not exist: warning, falls back to automatic.
+  projector_->subProp("Output screen")->setValue("HDMI-9");
+  const Status s = statusOf(projector_, "Output");
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_NE(s.text.indexOf("Screen 'HDMI-9' is not connected"), -1) << s.text.toStdString();
+  // Explicitly the primary screen: full screen there.
+  projector_->subProp("Output screen")->setValue("DUMMY0");
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow()->geometry() == screenNamed("DUMMY0")->geometry(); }));
+  // Full screen off: a normal window.
+  projector_->subProp("Full screen")->setValue(false);
+  ASSERT_TRUE(waitFor([&] { return !projector_->outputWindow()->isFullScreenOn(); }));
+  EXPECT_EQ(visibleProjectorWindows(), 1);
 }

@@ -29,9 +29,11 @@ public:
 
   /**
    * Shows the window on `screen`: full screen (cursor hidden) if built so, else as a normal window
-   * of `image_size` shrunk to fit the screen. Moves to the screen before going full screen.
+   * of `image_size` shrunk to fit the screen, centred, or with `corner` shrunk to at most half
+   * the screen in its bottom-right corner (when it shares the screen with rviz). Moves to the
+   * screen before going full screen.
    */
-  void present(QScreen* screen, const QSize& image_size);
+  void present(QScreen* screen, const QSize& image_size, bool corner = false);
   bool isFullScreenOn() const { return full_screen_; }
 
 Q_SIGNALS:
