@@ -15,6 +15,7 @@
 #include "rviz_projector/core/arrow_solid.h"
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/ros_conversions.h"
 
 namespace rviz_projector
@@ -127,12 +128,14 @@ void ProjectedPathDisplay::onEnable()
 {
   MFDClass::onEnable();
   scene_node_->setVisible(true);
+  ProjectionChangeCounter::bump();
 }
 
 void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
   scene_node_->setVisible(false);
+  ProjectionChangeCounter::bump();
 }
 
 void ProjectedPathDisplay::reset()
@@ -150,6 +153,7 @@ void ProjectedPathDisplay::reset()
   {
     arrow_mesh_->clear();
     circle_mesh_->clear();
+    ProjectionChangeCounter::bump();
   }
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
 }
@@ -312,6 +316,7 @@ void ProjectedPathDisplay::redraw()
     DiscOutline(spaced_->destination, spacer_.parameters().circle_diameter).appendTriangles(flat_buffer_);
   }
   circle_mesh_->setFlatTriangles(flat_buffer_, height, circle_colour);
+  ProjectionChangeCounter::bump();
   context_->queueRender();
 }
 

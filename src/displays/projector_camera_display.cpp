@@ -36,6 +36,7 @@
 #include "rviz_projector/core/floor_grid.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projector_footprint_visual.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/render_target_readback.h"
@@ -328,12 +329,14 @@ void ProjectorCameraDisplay::applyCameraInfo()
   if (!check.ok())
   {
     has_lens_ = false;
+    markChanged();
     setStatus(rviz::StatusProperty::Error, "CameraInfo",
               QString("Unusable CameraInfo: %1; the projector shows background only")
                   .arg(QString::fromStdString(check.error)));
     deleteStatus("Distortion");
     return;
   }
+  markChanged();
   const bool size_changed = !has_lens_ || lens.width() != lens_.width() || lens.height() != lens_.height();
   lens_ = lens;
   has_lens_ = true;
@@ -368,6 +371,7 @@ std::string ProjectorCameraDisplay::projectorFrame() const
 
 void ProjectorCameraDisplay::updateCameraSettings()
 {
+  markChanged();
   if (!camera_)
   {
     return;
@@ -418,6 +422,7 @@ void ProjectorCameraDisplay::updateFootprintVisible()
 
 void ProjectorCameraDisplay::updateTestPattern()
 {
+  markChanged();
   if (!grid_mesh_)
   {
     return;
@@ -699,6 +704,7 @@ void ProjectorCameraDisplay::updateFootprint()
     {
       grid_triangles_.swap(triangles);
       grid_mesh_->setFlatTriangles(grid_triangles_, 0.0, Ogre::ColourValue::White);
+      markChanged();
     }
   }
 }
@@ -786,7 +792,65 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   }
 }
 
-bool ProjectorCameraDisplay::renderFrame(bool swap)
+bool ProjectorCameraDisplay::FrameState::operator==(const FrameState& o) const
+{
+  return pose == o.pose && changes == o.changes && visibility == o.visibility && drawable == o.drawable &&
+         std::equal(std::begin(viewport), std::end(viewport), std::begin(o.viewport));
+}
+
+void ProjectorCameraDisplay::markChanged()
+{
+  ++own_changes_;
+}
+
+bool ProjectorCameraDisplay::showsForeignDisplays() const
+{
+  if (!visibility_property_ || !visibility_property_->getBool())
+  {
+    return false;
+  }
+  // Same index mapping as onDisplayAdded(): one child per display of the group, except this one.
+  rviz::DisplayGroup* group = context_->getRootDisplayGroup();
+  int index = 0;
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    rviz::Display* d = group->getDisplayAt(i);
+    if (d == this)
+    {
+      continue;
+    }
+    rviz::Property* shown = index < visibility_property_->numChildren() ? visibility_property_->childAt(index) : nullptr;
+    ++index;
+    const bool ours = d->getClassId().startsWith("rviz_projector/");
+    if (d->isEnabled() && shown && shown->getValue().toBool() && !ours)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::uint64_t ProjectorCameraDisplay::visibilitySignature() const
+{
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a over one byte per display
+  auto mix = [&hash](std::uint8_t byte) {
+    hash ^= byte;
+    hash *= 1099511628211ull;
+  };
+  mix(visibility_property_ && visibility_property_->getBool() ? 1 : 0);
+  rviz::DisplayGroup* group = context_->getRootDisplayGroup();
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    mix(group->getDisplayAt(i)->isEnabled() ? 2 : 3);
+  }
+  for (int i = 0; visibility_property_ && i < visibility_property_->numChildren(); ++i)
+  {
+    mix(visibility_property_->childAt(i)->getValue().toBool() ? 4 : 5);
+  }
+  return hash;
+}
+
+bool ProjectorCameraDisplay::prepareFrame()
 {
   if (!window_ || !viewport_)
   {
@@ -799,6 +863,11 @@ bool ProjectorCameraDisplay::renderFrame(bool swap)
   }
   updateFootprint();
   updateViewport();
+  return true;
+}
+
+void ProjectorCameraDisplay::drawFrame(bool swap)
+{
   Ogre::RenderWindow* rw = window_->renderWindow();
   rw->update(false);
   ++frames_rendered_;
@@ -806,7 +875,6 @@ bool ProjectorCameraDisplay::renderFrame(bool swap)
   {
     rw->swapBuffers();
   }
-  return true;
 }
 
 void ProjectorCameraDisplay::renderNow()
@@ -815,12 +883,32 @@ void ProjectorCameraDisplay::renderNow()
   {
     return;
   }
-  const bool publish = image_output_property_->getBool() && image_pub_ &&
-                       (ros::WallTime::now() - last_image_time_).toSec() >= 1.0 / image_rate_property_->getFloat();
-  if (!renderFrame(!publish))
+  // rviz handles ROS callbacks (new paths, CameraInfo) only at its main view's frame rate; the
+  // projector must not wait for that. Same thread as rviz's own spinOnce(), so this is safe.
+  ros::spinOnce();
+  if (!prepareFrame())
   {
     return;
   }
+  const bool publish = image_output_property_->getBool() && image_pub_ &&
+                       (ros::WallTime::now() - last_image_time_).toSec() >= 1.0 / image_rate_property_->getFloat();
+
+  FrameState state;
+  const Ogre::Vector3& p = camera_node_->getPosition();
+  const Ogre::Quaternion& q = camera_node_->getOrientation();
+  state.pose = {p.x, p.y, p.z, q.w, q.x, q.y, q.z};
+  state.changes = ProjectionChangeCounter::value() + own_changes_;
+  state.visibility = visibilitySignature();
+  viewportPixels(state.viewport[0], state.viewport[1], state.viewport[2], state.viewport[3]);
+  state.drawable = has_lens_ && pose_ok_;
+  if (have_last_frame_ && state == last_frame_ && !publish && !showsForeignDisplays())
+  {
+    ++frames_skipped_;  // the projector already shows exactly this
+    return;
+  }
+  last_frame_ = state;
+  have_last_frame_ = true;
+  drawFrame(!publish);
   if (publish)
   {
     publishImage();
@@ -830,13 +918,39 @@ void ProjectorCameraDisplay::renderNow()
 
 bool ProjectorCameraDisplay::grabFrame(std::vector<std::uint8_t>& rgb, unsigned& width, unsigned& height)
 {
-  if (!renderFrame(false))
+  if (!prepareFrame())
   {
     return false;
   }
+  drawFrame(false);
   const bool ok = readRgbPixels(window_->renderWindow(), rgb, width, height);
   window_->renderWindow()->swapBuffers();
   return ok;
+}
+
+void ProjectorCameraDisplay::setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text)
+{
+  auto it = status_cache_.find(name);
+  if (it != status_cache_.end() && it->second.first == level && it->second.second == text)
+  {
+    return;
+  }
+  status_cache_[name] = {level, text};
+  Display::setStatus(level, name, text);
+}
+
+void ProjectorCameraDisplay::deleteStatus(const QString& name)
+{
+  if (status_cache_.erase(name) > 0)
+  {
+    Display::deleteStatus(name);
+  }
+}
+
+void ProjectorCameraDisplay::clearStatuses()
+{
+  status_cache_.clear();
+  Display::clearStatuses();
 }
 
 void ProjectorCameraDisplay::publishImage()

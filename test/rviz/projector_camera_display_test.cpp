@@ -13,10 +13,12 @@
 #include <QGuiApplication>
 #include <QImage>
 #include <QScreen>
+#include <QThread>
 #include <QWindow>
 #include <nav_msgs/Path.h>
 #include <rviz/display.h>
 #include <rviz/display_group.h>
+#include <rviz/render_panel.h>
 #include <rviz/visualization_manager.h>
 #include <sensor_msgs/CameraInfo.h>
 
@@ -758,4 +760,85 @@ TEST_F(ProjectorCameraTest, FullScreenOnTheProjectorScreenFollowsUnplugAndReplug
   projector_->subProp("Full screen")->setValue(false);
   ASSERT_TRUE(waitFor([&] { return !projector_->outputWindow()->isFullScreenOn(); }));
   EXPECT_EQ(visibleProjectorWindows(), 1);
+}
+
+namespace
+{
+/// Runs only Qt's event loop (timers, queued calls), no ros::spinOnce() from the test: whatever
+/// reaches the projector then got there through the display's own timer.
+void pumpQt(double seconds)
+{
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::WallTime::now() < end)
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 5);
+    QThread::msleep(2);
+  }
+}
+
+/// The output window's pixels as the X server has them, without rendering.
+QImage peek(rviz_projector::ProjectorOutputWindow* window)
+{
+  QScreen* screen = window->windowHandle() ? window->windowHandle()->screen() : QGuiApplication::primaryScreen();
+  return screen->grabWindow(window->winId()).toImage().convertToFormat(QImage::Format_RGB888);
+}
+}  // namespace
+
+TEST_F(ProjectorSceneTest, RendersOnChangeWithoutRvizUpdatesAndNotOtherwise)
+{
+  auto* path = addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  ASSERT_NE(path, nullptr);
+  // rviz's main view stops updating (as if minimised, or its frame rate were tiny); the main
+  // window is hidden. The projector keeps its own timer.
+  rviz_->manager()->stopUpdate();
+  rviz_->panel()->hide();
+  pumpQt(0.3);
+  rviz_projector::ProjectorOutputWindow* window = projector_->outputWindow();
+  ASSERT_GT(countColour(peek(window), kArrowMagenta), 100);
+
+  // Nothing changes: no new frames.
+  const std::uint64_t rendered = projector_->framesRendered();
+  const std::uint64_t skipped = projector_->framesSkipped();
+  pumpQt(0.5);
+  EXPECT_EQ(projector_->framesRendered(), rendered) << "re-rendered an unchanged view";
+  EXPECT_GT(projector_->framesSkipped(), skipped);
+
+  // A new path (arrows elsewhere) reaches the window through the projector's own timer.
+  nav_msgs::Path moved;
+  moved.header.frame_id = "map";
+  for (double x : {0.5, 2.0})
+  {
+    geometry_msgs::PoseStamped pose;
+    pose.header = moved.header;
+    pose.pose.position.x = x;
+    pose.pose.position.y = 0.15;
+    pose.pose.orientation.w = 1;
+    moved.poses.push_back(pose);
+  }
+  path_pub_.publish(moved);
+  // The old path's arrow nearest the middle of the lit area, moved sideways by 0.15 m.
+  Vec2 old_mid{0.0, 0.0};
+  for (const auto& a : path->spacedPath().arrows)
+  {
+    const Vec2 mid = a.tail * 0.5 + a.tip * 0.5;
+    if (std::abs(mid.x - 1.1) < std::abs(old_mid.x - 1.1))
+    {
+      old_mid = mid;
+    }
+  }
+  const Vec2 new_arrow = windowPixel(old_mid + Vec2{0.0, 0.15});
+  bool arrived = false;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (!arrived && ros::WallTime::now() < end)
+  {
+    pumpQt(0.05);
+    const QImage frame = peek(window);
+    int left, top, width, height;
+    projector_->viewportPixels(left, top, width, height);
+    arrived = rviz_projector_test::sameColour(
+        frame.pixel(left + int(std::lround(new_arrow.x)), top + int(std::lround(new_arrow.y))), kArrowMagenta, 30);
+  }
+  EXPECT_TRUE(arrived) << "the new path never reached the projector window";
+  EXPECT_GT(projector_->framesRendered(), rendered);
+  rviz_->manager()->startUpdate();
 }

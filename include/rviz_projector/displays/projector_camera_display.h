@@ -4,7 +4,9 @@
 #pragma once
 
 #ifndef Q_MOC_RUN
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,7 +59,14 @@ public:
 
   void reset() override;
   void setTopic(const QString& topic, const QString& datatype) override;
+  /// Statuses are set every frame; these forward only actual changes to rviz (each call posts an
+  /// event and repaints the Displays panel).
+  void setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text) override;
+  void deleteStatus(const QString& name) override;
+  void clearStatuses() override;
 
+  /// Frames skipped because nothing the projector shows had changed.
+  std::uint64_t framesSkipped() const { return frames_skipped_; }
   /// Renders a frame and copies it (RGB, rows top down, whole window) before it is shown.
   bool grabFrame(std::vector<std::uint8_t>& rgb, unsigned& width, unsigned& height);
   /// The output window (nullptr while the display has never been enabled).
@@ -113,8 +122,17 @@ private:
   void updateViewport();
   void updateFootprint();
   void publishImage();
+  /// Follows tf and the window: camera pose, footprint, viewport. False when nothing can be drawn.
+  bool prepareFrame();
   /// Renders into the back buffer; `swap` shows it.
-  bool renderFrame(bool swap);
+  void drawFrame(bool swap);
+  /// Whether a display that is not from this package is shown in the projector view (its changes
+  /// are not announced, so the view must render at its frame rate).
+  bool showsForeignDisplays() const;
+  /// Hash of the Visibility property's ticks and the displays' enabled states.
+  std::uint64_t visibilitySignature() const;
+  /// Something this display itself draws or how it draws changed: render again.
+  void markChanged();
   std::string projectorFrame() const;
   void setDefaultVisibility(rviz::Property* visibility_child, rviz::Display* display);
 
@@ -147,6 +165,22 @@ private:
   std::uint32_t vis_bit_ = 0;
   QTimer render_timer_;
   std::uint64_t frames_rendered_ = 0;
+  std::uint64_t frames_skipped_ = 0;
+
+  /// What the last rendered frame depended on; an identical state needs no new frame.
+  struct FrameState
+  {
+    std::array<float, 7> pose{};  // position, orientation (w, x, y, z)
+    std::uint64_t changes = 0;    // ProjectionChangeCounter + own changes
+    std::uint64_t visibility = 0;  // which displays the Visibility property shows
+    int viewport[4] = {0, 0, 0, 0};
+    bool drawable = false;
+    bool operator==(const FrameState& o) const;
+  };
+  FrameState last_frame_;
+  bool have_last_frame_ = false;
+  std::uint64_t own_changes_ = 0;
+  std::map<QString, std::pair<int, QString>> status_cache_;
 
   std::unique_ptr<ProjectorFootprintVisual> footprint_visual_;
   std::unique_ptr<FloorMesh> grid_mesh_;
