@@ -12,6 +12,7 @@
 #include <QApplication>
 #include <QGuiApplication>
 #include <QImage>
+#include <QKeyEvent>
 #include <QScreen>
 #include <QThread>
 #include <QWindow>
@@ -21,6 +22,7 @@
 #include <rviz/render_panel.h>
 #include <rviz/visualization_manager.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
 
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/pinhole_model.h"
@@ -841,4 +843,54 @@ TEST_F(ProjectorSceneTest, RendersOnChangeWithoutRvizUpdatesAndNotOtherwise)
   EXPECT_TRUE(arrived) << "the new path never reached the projector window";
   EXPECT_GT(projector_->framesRendered(), rendered);
   rviz_->manager()->startUpdate();
+}
+
+TEST_F(ProjectorSceneTest, ImageOutputPublishesTheRenderedView)
+{
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  sensor_msgs::Image::ConstPtr image;
+  sensor_msgs::CameraInfo::ConstPtr info;
+  ros::Subscriber image_sub = nh_.subscribe<sensor_msgs::Image>(
+      "/test/rendered/image", 1, [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
+  ros::Subscriber info_sub = nh_.subscribe<sensor_msgs::CameraInfo>(
+      "/test/rendered/camera_info", 1, [&](const sensor_msgs::CameraInfo::ConstPtr& m) { info = m; });
+  projector_->subProp("Image output")->subProp("Image topic")->setValue("/test/rendered/image");
+  projector_->subProp("Image output")->subProp("Image rate")->setValue(20.0);
+  projector_->subProp("Image output")->setValue(true);
+  ASSERT_TRUE(waitFor([&] { return image && info; }, 5.0));
+  int left, top, width, height;
+  projector_->viewportPixels(left, top, width, height);
+  EXPECT_EQ(int(image->width), width);
+  EXPECT_EQ(int(image->height), height);
+  EXPECT_EQ(image->encoding, "rgb8");
+  EXPECT_EQ(image->header.frame_id, kOpticalFrame);
+  EXPECT_EQ(info->width, 1280u);
+  int magenta = 0;
+  for (std::size_t i = 0; i + 2 < image->data.size(); i += 3)
+  {
+    magenta += (image->data[i] > 200 && image->data[i + 1] < 60 && image->data[i + 2] > 200) ? 1 : 0;
+  }
+  EXPECT_GT(magenta, 100) << "the published image shows the arrows";
+  // Off again: nothing more is published.
+  projector_->subProp("Image output")->setValue(false);
+  spinFor(0.2);
+  image.reset();
+  spinFor(0.5);
+  EXPECT_FALSE(image);
+}
+
+TEST_F(ProjectorCameraTest, EscapeLeavesFullScreen)
+{
+  if (QGuiApplication::screens().size() < 2)
+  {
+    GTEST_SKIP() << "full screen needs a second screen (scripts/test starts a two-screen X server)";
+  }
+  info_pub_.publish(cameraInfo(1280, 800, 1300, 639.5, 399.5));
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isFullScreenOn(); }));
+  EXPECT_EQ(projector_->outputWindow()->cursor().shape(), Qt::BlankCursor) << "no mouse cursor on the floor";
+  QKeyEvent escape(QEvent::KeyPress, Qt::Key_Escape, Qt::NoModifier);
+  QApplication::sendEvent(projector_->outputWindow(), &escape);
+  ASSERT_TRUE(waitFor([&] { return !projector_->outputWindow()->isFullScreenOn(); }));
+  EXPECT_EQ(projector_->subProp("Full screen")->getValue().toBool(), false);
+  EXPECT_EQ(visibleProjectorWindows(), 1);
 }
