@@ -18,7 +18,7 @@ namespace rviz_projector
 {
 namespace
 {
-const char* const kTemplateHint = " (config/projector_template.yaml shows the format)";
+const char* const kTemplateHint = " (rviz_projector's config/projector_template.yaml shows the format)";
 
 std::string quoted(const std::string& field)
 {
