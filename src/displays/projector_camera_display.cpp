@@ -415,6 +415,12 @@ void ProjectorCameraDisplay::updateFrameRate()
   render_timer_.setInterval(std::max(1, 1000 / std::max(1, frame_rate_property_->getInt())));
 }
 
+void ProjectorCameraDisplay::onFootprintPropertyChanged()
+{
+  markChanged();  // redraw the lines at the next frame
+  updateFootprintVisible();
+}
+
 void ProjectorCameraDisplay::updateFootprintVisible()
 {
   footprint_visual_->setVisible(isEnabled() && footprint_property_->getBool() && has_lens_ && pose_ok_);
@@ -658,8 +664,18 @@ void ProjectorCameraDisplay::updateFootprint()
     return;
   }
   const Ogre::Vector3 position = camera_node_->getPosition();
-  const Ogre::Quaternion optical =
-      camera_node_->getOrientation() * Ogre::Quaternion(Ogre::Degree(180), Ogre::Vector3::UNIT_X);
+  const Ogre::Quaternion& orientation = camera_node_->getOrientation();
+  // Unchanged pose, lens and settings: the footprint and its statuses are as they were.
+  const std::array<float, 7> key{position.x, position.y, position.z, orientation.w, orientation.x, orientation.y,
+                                 orientation.z};
+  if (key == footprint_key_ && own_changes_ == footprint_changes_)
+  {
+    updateFootprintVisible();
+    return;
+  }
+  footprint_key_ = key;
+  footprint_changes_ = own_changes_;
+  const Ogre::Quaternion optical = orientation * Ogre::Quaternion(Ogre::Degree(180), Ogre::Vector3::UNIT_X);
   const RigidTransform pose =
       RigidTransform::fromQuaternion(optical.x, optical.y, optical.z, optical.w, Vec3{position.x, position.y, position.z});
   const FloorFootprint footprint(lens_, pose, kFrustumLength);

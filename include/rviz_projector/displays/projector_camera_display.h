@@ -100,7 +100,7 @@ private Q_SLOTS:
   void updateFullScreen();
   void updateCameraSettings();
   void updateFrameRate();
-  void updateFootprintVisible();
+  void onFootprintPropertyChanged();
   void updateTestPattern();
   void updateImageOutput();
   void fillScreenOptions();
@@ -124,6 +124,7 @@ private:
   void publishImage();
   /// Follows tf and the window: camera pose, footprint, viewport. False when nothing can be drawn.
   bool prepareFrame();
+  void updateFootprintVisible();
   /// Renders into the back buffer; `swap` shows it.
   void drawFrame(bool swap);
   /// Whether a display that is not from this package is shown in the projector view (its changes
@@ -180,6 +181,8 @@ private:
   FrameState last_frame_;
   bool have_last_frame_ = false;
   std::uint64_t own_changes_ = 0;
+  std::array<float, 7> footprint_key_{};  // camera pose the footprint was last computed for
+  std::uint64_t footprint_changes_ = ~0ull;
   std::map<QString, std::pair<int, QString>> status_cache_;
 
   std::unique_ptr<ProjectorFootprintVisual> footprint_visual_;
