@@ -63,7 +63,14 @@ if(CATKIN_ENABLE_TESTING)
   )
   add_dependencies(test_nodes_path_to_markers path_to_markers)
 
-  foreach(test test_nodes_projector_info_publisher test_nodes_path_to_markers)
+  # launch/projector.launch (through demo.launch, and with every argument set): tf and CameraInfo.
+  add_rostest_gtest(test_nodes_projector_launch
+    test/nodes/projector_launch.test
+    test/nodes/projector_launch_test.cpp
+  )
+  add_dependencies(test_nodes_projector_launch demo_navigation projector_info_publisher)
+
+  foreach(test test_nodes_path_to_markers test_nodes_projector_info_publisher test_nodes_projector_launch)
     set_target_properties(${test} PROPERTIES AUTOMOC OFF)
     target_include_directories(${test} SYSTEM PRIVATE ${${PROJECT_NAME}_NODES_INCLUDE_DIRS})
     target_link_libraries(${test} ${PROJECT_NAME}_core ${catkin_LIBRARIES} ${${PROJECT_NAME}_NODES_LIBRARIES})
