@@ -3,6 +3,7 @@
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
+#include <rviz/config.h>
 #include <rviz/display_context.h>
 #include <rviz/frame_manager.h>
 #include <rviz/properties/color_property.h>
@@ -14,6 +15,7 @@
 #include "rviz_projector/core/arrow_outline.h"
 #include "rviz_projector/core/arrow_solid.h"
 #include "rviz_projector/core/disc_outline.h"
+#include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/ros_conversions.h"
@@ -156,6 +158,28 @@ void ProjectedPathDisplay::reset()
     ProjectionChangeCounter::bump();
   }
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
+}
+
+void ProjectedPathDisplay::load(const rviz::Config& config)
+{
+  MFDClass::load(config);
+  ConfigCheck check;
+  for (rviz::FloatProperty* p : {spacing_property_, shaft_length_property_, shaft_diameter_property_,
+                                 head_length_property_, head_diameter_property_, circle_diameter_property_,
+                                 alpha_property_, height_property_})
+  {
+    check.number(config.mapGetChild(p->getName()), p);
+  }
+  check.choice(config.mapGetChild(mode_property_->getName()), mode_property_, {"Exact", "Paper"}, "Exact");
+  check.choice(config.mapGetChild(style_property_->getName()), style_property_, {"Flat", "3D"}, "Flat");
+  if (check.report().isEmpty())
+  {
+    deleteStatus("Config");
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + check.report());
+  }
 }
 
 SpacingParameters ProjectedPathDisplay::spacingParameters() const

@@ -15,6 +15,7 @@
 #include <QWindow>
 
 #include <rviz/bit_allocator.h>
+#include <rviz/config.h>
 #include <rviz/display_context.h>
 #include <rviz/display_group.h>
 #include <rviz/frame_manager.h>
@@ -35,6 +36,7 @@
 #include "rviz_projector/core/floor_footprint.h"
 #include "rviz_projector/core/floor_grid.h"
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projector_footprint_visual.h"
@@ -269,6 +271,27 @@ void ProjectorCameraDisplay::reset()
   has_lens_ = false;
   setStatus(rviz::StatusProperty::Warn, "CameraInfo",
             QString("No CameraInfo received on %1").arg(topic_property_->getTopic()));
+}
+
+void ProjectorCameraDisplay::load(const rviz::Config& config)
+{
+  Display::load(config);
+  ConfigCheck check;
+  for (rviz::Property* p : {static_cast<rviz::Property*>(near_clip_property_), static_cast<rviz::Property*>(far_clip_property_),
+                            static_cast<rviz::Property*>(frame_rate_property_)})
+  {
+    check.number(config.mapGetChild(p->getName()), p);
+  }
+  check.number(config.mapGetChild(image_output_property_->getName()).mapGetChild(image_rate_property_->getName()),
+               image_rate_property_);
+  if (check.report().isEmpty())
+  {
+    deleteStatus("Config");
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + check.report());
+  }
 }
 
 void ProjectorCameraDisplay::fixedFrameChanged()

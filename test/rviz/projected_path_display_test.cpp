@@ -313,3 +313,49 @@ TEST_F(ProjectedPathTest, UnknownFrameIsReportedAndRecoversWhenTheFrameAppears)
   ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 4; }, 8.0));
   EXPECT_EQ(statusOf(display_, "Transform").level, rviz::StatusProperty::Ok);
 }
+
+TEST_F(ProjectedPathTest, NonsenseInAConfigIsClampedAndReported)
+{
+  const char* yaml = R"(
+Displays:
+  - Class: rviz_projector/ProjectedPath
+    Name: From a bad config
+    Enabled: true
+    Topic: /test/plan
+    Spacing: -3
+    Shaft length: abc
+    Head length: .nan
+    Head diameter: 1e9
+    Alpha: 7
+    Spacing mode: Fast
+    Style: Neon
+)";
+  rviz::Config config;
+  rviz::YamlConfigReader reader;
+  reader.readString(config, yaml);
+  ASSERT_FALSE(reader.error()) << reader.errorMessage().toStdString();
+  rviz_->manager()->load(config);
+  rviz::DisplayGroup* root = rviz_->manager()->getRootDisplayGroup();
+  ASSERT_EQ(root->numDisplays(), 1);
+  rviz::Display* d = root->getDisplayAt(0);
+  EXPECT_NEAR(d->subProp("Spacing")->getValue().toDouble(), 0.01, 1e-6);
+  EXPECT_NEAR(d->subProp("Shaft length")->getValue().toDouble(), 0.005, 1e-6);
+  EXPECT_GT(d->subProp("Head length")->getValue().toDouble(), 0.0);
+  EXPECT_NEAR(d->subProp("Head diameter")->getValue().toDouble(), 10.0, 1e-6);
+  EXPECT_NEAR(d->subProp("Alpha")->getValue().toDouble(), 1.0, 1e-6);
+  EXPECT_EQ(d->subProp("Spacing mode")->getValue().toString().toStdString(), "Exact");
+  EXPECT_EQ(d->subProp("Style")->getValue().toString().toStdString(), "Flat");
+  const Status s = statusOf(d, "Config");
+  ASSERT_TRUE(s.present);
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  for (const char* name : {"Spacing: '-3'", "Shaft length: 'abc'", "Head length", "Head diameter: '1e9'", "Alpha: '7'",
+                           "Spacing mode: 'Fast' -> Exact", "Style: 'Neon' -> Flat"})
+  {
+    EXPECT_NE(s.text.indexOf(name), -1) << name << " missing in: " << s.text.toStdString();
+  }
+  // And it still draws.
+  publisher_.publish(straightPath("odom", 3.05));
+  auto* path = dynamic_cast<ProjectedPathDisplay*>(d);
+  ASSERT_NE(path, nullptr);
+  EXPECT_TRUE(waitFor([&] { return !path->spacedPath().arrows.empty(); }));
+}

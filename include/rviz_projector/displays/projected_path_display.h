@@ -36,6 +36,8 @@ public:
   ~ProjectedPathDisplay() override;
 
   void reset() override;
+  /// Loads the config, then reports values that were clamped or replaced (a "Config" warning).
+  void load(const rviz::Config& config) override;
 
   /// Arrows and destination currently drawn, in the fixed frame (for tests and tools).
   const SpacedPath& spacedPath() const { return *spaced_; }

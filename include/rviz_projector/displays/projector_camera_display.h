@@ -58,6 +58,8 @@ public:
   ~ProjectorCameraDisplay() override;
 
   void reset() override;
+  /// Loads the config, then reports values that were clamped or replaced (a "Config" warning).
+  void load(const rviz::Config& config) override;
   void setTopic(const QString& topic, const QString& datatype) override;
   /// Statuses are set every frame; these forward only actual changes to rviz (each call posts an
   /// event and repaints the Displays panel).

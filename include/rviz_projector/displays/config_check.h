@@ -1,0 +1,30 @@
+// Checks what a display made of the values in a loaded .rviz config: numbers that were not usable
+// (clamped or replaced) and choices that do not exist, so the display can say so in a status.
+#pragma once
+
+#include <QString>
+#include <QStringList>
+
+namespace rviz
+{
+class Config;
+class Property;
+}  // namespace rviz
+
+namespace rviz_projector
+{
+class ConfigCheck
+{
+public:
+  /// `value` is the property's entry in the display's config (absent entries are fine).
+  void number(const rviz::Config& value, rviz::Property* property);
+  /// A choice outside `options` is replaced by `fallback`.
+  void choice(const rviz::Config& value, rviz::Property* property, const QStringList& options,
+              const QString& fallback);
+  /// One line per adjusted value ("Spacing: -3 -> 0.01"), empty when everything was usable.
+  QString report() const { return problems_.join("; "); }
+
+private:
+  QStringList problems_;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,39 @@
+#include "rviz_projector/displays/config_check.h"
+
+#include <cmath>
+
+#include <rviz/config.h>
+#include <rviz/properties/property.h>
+
+namespace rviz_projector
+{
+void ConfigCheck::number(const rviz::Config& value, rviz::Property* property)
+{
+  if (!value.isValid() || value.getType() != rviz::Config::Value)
+  {
+    return;
+  }
+  const QString text = value.getValue().toString();
+  bool ok = false;
+  const double wanted = text.trimmed().toDouble(&ok);
+  const double used = property->getValue().toDouble();
+  const double tolerance = 1e-5 * std::max(1.0, std::abs(used));
+  if (!ok || !std::isfinite(wanted) || std::abs(wanted - used) > tolerance)
+  {
+    problems_ << QString("%1: '%2' -> %3").arg(property->getName(), text, property->getValue().toString());
+  }
+}
+
+void ConfigCheck::choice(const rviz::Config& value, rviz::Property* property, const QStringList& options,
+                         const QString& fallback)
+{
+  const QString current = property->getValue().toString();
+  if (options.contains(current))
+  {
+    return;
+  }
+  property->setValue(fallback);
+  problems_ << QString("%1: '%2' -> %3").arg(property->getName(), value.isValid() ? value.getValue().toString() : current,
+                                            fallback);
+}
+}  // namespace rviz_projector
