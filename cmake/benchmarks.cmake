@@ -1,1 +1,37 @@
-# (filled in by the benchmarks work)
+# Benchmarks: built with the package, run by scripts/bench (never by the tests).
+#  - rviz_projector_microbench: Google Benchmark microbenchmarks of the core and of the
+#    ProjectedPath CPU update, each next to a re-implementation of the reference pipeline.
+#  - rviz_projector_bench_probe: the end-to-end bench's X11 probe and ROS driver (scripts/bench --e2e).
+# Each is skipped, with a message, when its libraries are missing.
+
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+  #catkin_lint: ignore uninstalled_target
+  add_executable(${PROJECT_NAME}_microbench
+    bench/micro/bench_paths.cpp
+    bench/micro/micro_benchmarks.cpp
+    bench/micro/reference_baseline.cpp
+  )
+  set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)
+  target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro)
+  target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${PROJECT_NAME}_core ${catkin_LIBRARIES}
+    benchmark::benchmark)
+  target_compile_options(${PROJECT_NAME}_microbench PRIVATE ${${PROJECT_NAME}_WARNINGS})
+  add_dependencies(${PROJECT_NAME}_microbench ${catkin_EXPORTED_TARGETS})
+else()
+  message(STATUS "${PROJECT_NAME}: Google Benchmark not found (apt-get install libbenchmark-dev): microbenchmarks skipped")
+endif()
+
+find_package(X11 QUIET)
+if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
+  #catkin_lint: ignore uninstalled_target
+  add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp)
+  set_target_properties(${PROJECT_NAME}_bench_probe PROPERTIES AUTOMOC OFF)
+  target_include_directories(${PROJECT_NAME}_bench_probe SYSTEM PRIVATE ${X11_INCLUDE_DIR})
+  target_link_libraries(${PROJECT_NAME}_bench_probe ${catkin_LIBRARIES} ${X11_LIBRARIES} ${X11_Xext_LIB}
+    ${X11_Xdamage_LIB} ${X11_Xfixes_LIB})
+  target_compile_options(${PROJECT_NAME}_bench_probe PRIVATE ${${PROJECT_NAME}_WARNINGS})
+  add_dependencies(${PROJECT_NAME}_bench_probe ${catkin_EXPORTED_TARGETS})
+else()
+  message(STATUS "${PROJECT_NAME}: X11 with MIT-SHM, XDamage and XFixes not found (apt-get install libx11-dev libxext-dev libxdamage-dev libxfixes-dev): e2e bench probe skipped")
+endif()

@@ -1,0 +1,1079 @@
+// rviz_projector_bench_probe: the measuring half of `scripts/bench --e2e`.
+//
+// Watches one output window's pixels on the X server (the rectangle the window occupies on the
+// screen, read back with MIT-SHM) and drives the scene over ROS, for one pipeline at a time:
+//
+//   drive        robot driving (demo_navigation's plans relayed to the ProjectedPath topic):
+//                frames/s delivered (content changes of the window) and CPU of every process
+//   idle         robot stopped (demo_navigation SIGSTOPped), same plan: frames/s and CPU
+//   latency      robot stopped: publish a changed path (in view of the projector), time until the
+//                first changed pixel in the window; the path alternates between two variants
+//   latency100k  the same with a 100,000-pose path (about 10,000 arrows)
+//   drive10k     robot driving with a 100,000-pose path of ~10,000 arrows laid over its circuit
+//
+// Frames are detected from the pixels, not from anyone's counters: the probe listens to XDamage
+// on the root window (every drawing operation the server performs), and after each batch of
+// damage touching the watched rectangle grabs that rectangle (XShmGetImage) and compares it with
+// the previous grab; a frame counts when any pixel differs. The change time is the time the
+// damage event arrived. --poll-ms N instead grabs every N ms (no XDamage needed, more CPU).
+//
+// Output: one line per measurement, tab separated: pipeline, phase, trial, metric, value. CPU is
+// in cores (1.0 = one core busy) from /proc/<pid>/stat utime+stime over the trial.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <dirent.h>
+#include <poll.h>
+#include <sys/ipc.h>
+#include <sys/shm.h>
+#include <unistd.h>
+
+#include <X11/Xlib.h>
+#include <X11/Xutil.h>
+#include <X11/extensions/XShm.h>
+#include <X11/extensions/Xdamage.h>
+#include <X11/extensions/Xfixes.h>
+
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::duration d)
+{
+  return std::chrono::duration<double>(d).count();
+}
+
+[[noreturn]] void fail(const std::string& what)
+{
+  std::fprintf(stderr, "bench_probe: %s\n", what.c_str());
+  std::exit(2);
+}
+
+void note(const std::string& what)
+{
+  std::fprintf(stderr, "[bench_probe] %s\n", what.c_str());
+}
+
+// ---- options --------------------------------------------------------------------------------
+struct Options
+{
+  std::string pipeline = "ours";
+  std::string window;          // substring of the output window's title
+  bool place_image = false;    // move the window so its image area lands at place_x, place_y
+  int place_x = 0, place_y = 0;
+  int image_width = 1280, image_height = 800;
+  std::vector<std::pair<std::string, pid_t>> pids;  // processes whose CPU is measured
+  pid_t demo_pid = 0;
+  std::string path_topic = "/bench/path";
+  std::string relay_from = "/demo/plan";
+  std::vector<std::string> phases{"drive", "idle", "latency", "latency100k", "drive10k"};
+  int trials = 20;
+  int latency_trials = 25;
+  double trial_seconds = 1.0;
+  double warmup_seconds = 3.0;
+  double poll_ms = 0.0;  // 0: XDamage-driven grabs
+  std::string split_threads = "rviz";  // process whose CPU is also reported per thread group
+  std::string out;
+};
+
+std::vector<std::string> split(const std::string& s, char sep)
+{
+  std::vector<std::string> parts;
+  std::stringstream in(s);
+  std::string part;
+  while (std::getline(in, part, sep))
+  {
+    if (!part.empty())
+    {
+      parts.push_back(part);
+    }
+  }
+  return parts;
+}
+
+Options parseOptions(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        fail("missing value for " + a);
+      }
+      return argv[++i];
+    };
+    if (a == "--pipeline") o.pipeline = value();
+    else if (a == "--window") o.window = value();
+    else if (a == "--place-image")
+    {
+      const auto xy = split(value(), ',');
+      if (xy.size() != 2) fail("--place-image X,Y");
+      o.place_image = true;
+      o.place_x = std::stoi(xy[0]);
+      o.place_y = std::stoi(xy[1]);
+    }
+    else if (a == "--image-size")
+    {
+      const auto wh = split(value(), 'x');
+      if (wh.size() != 2) fail("--image-size WxH");
+      o.image_width = std::stoi(wh[0]);
+      o.image_height = std::stoi(wh[1]);
+    }
+    else if (a == "--pid")
+    {
+      const std::string v = value();
+      const auto eq = v.find('=');
+      if (eq == std::string::npos) fail("--pid NAME=PID");
+      o.pids.emplace_back(v.substr(0, eq), static_cast<pid_t>(std::stol(v.substr(eq + 1))));
+    }
+    else if (a == "--demo-pid") o.demo_pid = static_cast<pid_t>(std::stol(value()));
+    else if (a == "--path-topic") o.path_topic = value();
+    else if (a == "--relay-from") o.relay_from = value();
+    else if (a == "--phases") o.phases = split(value(), ',');
+    else if (a == "--trials") o.trials = std::stoi(value());
+    else if (a == "--latency-trials") o.latency_trials = std::stoi(value());
+    else if (a == "--trial-seconds") o.trial_seconds = std::stod(value());
+    else if (a == "--warmup-seconds") o.warmup_seconds = std::stod(value());
+    else if (a == "--poll-ms") o.poll_ms = std::stod(value());
+    else if (a == "--out") o.out = value();
+    else if (a == "--threads") o.split_threads = value();
+    else if (a.rfind("__", 0) == 0 || a.find(":=") != std::string::npos) continue;  // ROS remaps
+    else fail("unknown option " + a);
+  }
+  if (o.window.empty()) fail("--window TITLE is required");
+  return o;
+}
+
+// ---- CPU from /proc --------------------------------------------------------------------------
+/// utime + stime of a process (all its threads), in clock ticks; -1 when it is gone.
+long long cpuTicks(pid_t pid)
+{
+  std::ifstream in("/proc/" + (pid == 0 ? std::string("self") : std::to_string(pid)) + "/stat");
+  std::string line;
+  if (!std::getline(in, line))
+  {
+    return -1;
+  }
+  // The command name (field 2) is in parentheses and may hold spaces: count fields after ')'.
+  const auto close = line.rfind(')');
+  if (close == std::string::npos)
+  {
+    return -1;
+  }
+  std::istringstream fields(line.substr(close + 2));
+  std::string field;
+  long long utime = 0, stime = 0;
+  for (int index = 3; fields >> field; ++index)
+  {
+    if (index == 14) utime = std::stoll(field);
+    if (index == 15)
+    {
+      stime = std::stoll(field);
+      break;
+    }
+  }
+  return utime + stime;
+}
+
+/// utime + stime of every thread of a process, by thread group: "main" (the thread that runs Qt and
+/// rviz's update loop), "llvmpipe" (Mesa's rasterizer threads), "other" (ROS, tf, Qt helpers).
+std::map<std::string, long long> threadTicks(pid_t pid)
+{
+  std::map<std::string, long long> groups;
+  const std::string task = "/proc/" + std::to_string(pid) + "/task/";
+  DIR* dir = opendir(task.c_str());
+  if (!dir)
+  {
+    return groups;
+  }
+  while (dirent* entry = readdir(dir))
+  {
+    if (entry->d_name[0] < '0' || entry->d_name[0] > '9')
+    {
+      continue;
+    }
+    std::ifstream in(task + entry->d_name + "/stat");
+    std::string line;
+    if (!std::getline(in, line))
+    {
+      continue;
+    }
+    const auto open = line.find('('), close = line.rfind(')');
+    if (open == std::string::npos || close == std::string::npos)
+    {
+      continue;
+    }
+    const std::string comm = line.substr(open + 1, close - open - 1);
+    std::istringstream fields(line.substr(close + 2));
+    std::string field;
+    long long ticks = 0;
+    for (int index = 3; fields >> field; ++index)
+    {
+      if (index == 14) ticks += std::stoll(field);
+      if (index == 15)
+      {
+        ticks += std::stoll(field);
+        break;
+      }
+    }
+    const std::string group = std::to_string(pid) == entry->d_name ? "main"
+                              : comm.rfind("llvmpipe", 0) == 0  ? "llvmpipe"
+                                                                : "other";
+    groups[group] += ticks;
+  }
+  closedir(dir);
+  return groups;
+}
+
+/// Busy time of all cores (everything but idle and iowait), in clock ticks.
+long long systemBusyTicks()
+{
+  std::ifstream in("/proc/stat");
+  std::string cpu;
+  long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+  return user + nice + system + irq + softirq + steal;
+}
+
+class CpuMeter
+{
+public:
+  CpuMeter(std::vector<std::pair<std::string, pid_t>> pids, std::string split_threads)
+    : pids_(std::move(pids)), split_(std::move(split_threads))
+  {
+    pids_.emplace_back("probe", 0);
+  }
+
+  void start()
+  {
+    start_time_ = Clock::now();
+    system_start_ = systemBusyTicks();
+    start_.clear();
+    thread_start_.clear();
+    for (const auto& p : pids_)
+    {
+      start_.push_back(cpuTicks(p.second));
+      if (p.first == split_)
+      {
+        thread_start_ = threadTicks(p.second);
+      }
+    }
+  }
+
+  /// Cores used by each process since start().
+  std::vector<std::pair<std::string, double>> stop() const
+  {
+    const double wall = seconds(Clock::now() - start_time_);
+    const double hz = static_cast<double>(sysconf(_SC_CLK_TCK));
+    std::vector<std::pair<std::string, double>> out;
+    for (std::size_t i = 0; i < pids_.size(); ++i)
+    {
+      const long long now = cpuTicks(pids_[i].second);
+      out.emplace_back(pids_[i].first, now < 0 || start_[i] < 0 ? NAN : (now - start_[i]) / hz / wall);
+    }
+    for (const auto& p : pids_)
+    {
+      if (p.first != split_)
+      {
+        continue;
+      }
+      for (const auto& group : threadTicks(p.second))
+      {
+        const auto before = thread_start_.find(group.first);
+        const long long start = before == thread_start_.end() ? 0 : before->second;
+        out.emplace_back("thread:" + p.first + "." + group.first, std::max(0LL, group.second - start) / hz / wall);
+      }
+    }
+    out.emplace_back("system", (systemBusyTicks() - system_start_) / hz / wall);
+    return out;
+  }
+
+  bool alive(const std::string& name) const
+  {
+    for (const auto& p : pids_)
+    {
+      if (p.first == name) return cpuTicks(p.second) >= 0;
+    }
+    return false;
+  }
+
+  const std::vector<std::pair<std::string, pid_t>>& pids() const { return pids_; }
+
+private:
+  std::vector<std::pair<std::string, pid_t>> pids_;
+  std::string split_;
+  std::vector<long long> start_;
+  std::map<std::string, long long> thread_start_;
+  long long system_start_ = 0;
+  Clock::time_point start_time_;
+};
+
+// ---- X11: the watched rectangle -----------------------------------------------------------
+struct Rect
+{
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+class ShmGrab
+{
+public:
+  ShmGrab(Display* display, const Rect& rect) : display_(display), rect_(rect)
+  {
+    const int screen = DefaultScreen(display_);
+    image_ = XShmCreateImage(display_, DefaultVisual(display_, screen), static_cast<unsigned>(DefaultDepth(display_, screen)),
+                             ZPixmap, nullptr, &info_, static_cast<unsigned>(rect.width),
+                             static_cast<unsigned>(rect.height));
+    if (!image_) fail("XShmCreateImage failed");
+    info_.shmid = shmget(IPC_PRIVATE, static_cast<std::size_t>(image_->bytes_per_line) * image_->height, IPC_CREAT | 0600);
+    if (info_.shmid < 0) fail("shmget failed");
+    info_.shmaddr = image_->data = static_cast<char*>(shmat(info_.shmid, nullptr, 0));
+    info_.readOnly = False;
+    if (!XShmAttach(display_, &info_)) fail("XShmAttach failed");
+    XSync(display_, False);
+    shmctl(info_.shmid, IPC_RMID, nullptr);  // freed once both sides detach
+  }
+  ~ShmGrab()
+  {
+    XShmDetach(display_, &info_);
+    XSync(display_, False);
+    shmdt(info_.shmaddr);
+    image_->data = nullptr;
+    XDestroyImage(image_);
+  }
+  ShmGrab(const ShmGrab&) = delete;
+  ShmGrab& operator=(const ShmGrab&) = delete;
+
+  /// Reads the rectangle of the screen (root window: what is shown there, whichever window).
+  void grab()
+  {
+    if (!XShmGetImage(display_, DefaultRootWindow(display_), image_, rect_.x, rect_.y, AllPlanes))
+    {
+      fail("XShmGetImage failed");
+    }
+  }
+  const char* data() const { return image_->data; }
+  std::size_t bytes() const { return static_cast<std::size_t>(image_->bytes_per_line) * image_->height; }
+  XImage* image() const { return image_; }
+
+private:
+  Display* display_;
+  Rect rect_;
+  XImage* image_ = nullptr;
+  XShmSegmentInfo info_{};
+};
+
+class Screen
+{
+public:
+  explicit Screen(double poll_ms) : poll_ms_(poll_ms)
+  {
+    display_ = XOpenDisplay(nullptr);
+    if (!display_) fail("cannot open the X display (DISPLAY unset?)");
+    if (!XShmQueryExtension(display_)) fail("the X server has no MIT-SHM extension");
+    int error_base = 0;
+    if (poll_ms_ <= 0.0)
+    {
+      int fixes_event = 0, fixes_error = 0;
+      if (!XDamageQueryExtension(display_, &damage_event_, &error_base) ||
+          !XFixesQueryExtension(display_, &fixes_event, &fixes_error))
+      {
+        note("no XDamage/XFixes: polling every 2 ms instead");
+        poll_ms_ = 2.0;
+      }
+    }
+    root_ = DefaultRootWindow(display_);
+    XWindowAttributes attributes;
+    XGetWindowAttributes(display_, root_, &attributes);
+    root_rect_ = Rect{0, 0, attributes.width, attributes.height};
+  }
+  ~Screen()
+  {
+    grabs_[0].reset();
+    grabs_[1].reset();
+    if (damage_) XDamageDestroy(display_, damage_);
+    if (parts_) XFixesDestroyRegion(display_, parts_);
+    XCloseDisplay(display_);
+  }
+
+  Display* display() const { return display_; }
+
+  /// The largest viewable window whose title contains `title`, or 0.
+  Window findWindow(const std::string& title)
+  {
+    Window best = 0;
+    long best_area = 0;
+    findIn(root_, title, best, best_area);
+    return best;
+  }
+
+  Rect windowRect(Window window)
+  {
+    XWindowAttributes a;
+    XGetWindowAttributes(display_, window, &a);
+    int x = 0, y = 0;
+    Window child;
+    XTranslateCoordinates(display_, window, root_, 0, 0, &x, &y, &child);
+    return Rect{x, y, a.width, a.height};
+  }
+
+  Rect clipToScreen(const Rect& r) const
+  {
+    const int x0 = std::max(r.x, 0), y0 = std::max(r.y, 0);
+    const int x1 = std::min(r.x + r.width, root_rect_.width), y1 = std::min(r.y + r.height, root_rect_.height);
+    return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+  }
+
+  /// Starts watching a rectangle of the screen.
+  void watch(const Rect& rect)
+  {
+    rect_ = rect;
+    grabs_[0] = std::make_unique<ShmGrab>(display_, rect_);
+    grabs_[1] = std::make_unique<ShmGrab>(display_, rect_);
+    current_ = 0;
+    if (poll_ms_ <= 0.0 && !damage_)
+    {
+      damage_ = XDamageCreate(display_, root_, XDamageReportNonEmpty);
+      parts_ = XFixesCreateRegion(display_, nullptr, 0);
+    }
+    XSync(display_, False);
+    grabs_[current_]->grab();
+  }
+
+  /// Grabs a whole rectangle once (for finding the image in a window).
+  std::vector<std::uint32_t> snapshot(const Rect& rect)
+  {
+    ShmGrab grab(display_, rect);
+    grab.grab();
+    std::vector<std::uint32_t> pixels(static_cast<std::size_t>(rect.width) * rect.height);
+    for (int y = 0; y < rect.height; ++y)
+    {
+      for (int x = 0; x < rect.width; ++x)
+      {
+        pixels[static_cast<std::size_t>(y) * rect.width + x] = static_cast<std::uint32_t>(XGetPixel(grab.image(), x, y));
+      }
+    }
+    return pixels;
+  }
+
+  struct Event
+  {
+    Clock::time_point time;  // when the server told us it drew (or when we polled)
+    bool changed;            // any pixel of the rectangle differs from the previous grab
+  };
+
+  /**
+   * Waits until the watched rectangle was drawn into (or the deadline); grabs it and says whether
+   * its content changed. Returns false at the deadline.
+   */
+  bool next(Clock::time_point deadline, Event& event)
+  {
+    if (poll_ms_ > 0.0)
+    {
+      const auto due = last_poll_ + std::chrono::microseconds(static_cast<long>(poll_ms_ * 1000.0));
+      const auto wake = std::min(due, deadline);
+      std::this_thread::sleep_until(wake);
+      if (wake == deadline && due > deadline)
+      {
+        return false;
+      }
+      last_poll_ = Clock::now();
+      event.time = last_poll_;
+      event.changed = grabAndCompare();
+      ++draws_;
+      return true;
+    }
+    while (true)
+    {
+      if (!waitForDamage(deadline))
+      {
+        return false;
+      }
+      const Clock::time_point time = Clock::now();
+      if (!damageTouchesRect())
+      {
+        continue;
+      }
+      event.time = time;
+      event.changed = grabAndCompare();
+      ++draws_;
+      return true;
+    }
+  }
+
+  /// Draw operations seen in the rectangle so far (frames presented, changed or not).
+  long draws() const { return draws_; }
+
+private:
+  void findIn(Window window, const std::string& title, Window& best, long& best_area)
+  {
+    char* name = nullptr;
+    if (XFetchName(display_, window, &name) && name)
+    {
+      const bool match = std::string(name).find(title) != std::string::npos;
+      XFree(name);
+      XWindowAttributes a;
+      if (match && XGetWindowAttributes(display_, window, &a) && a.map_state == IsViewable &&
+          static_cast<long>(a.width) * a.height > best_area)
+      {
+        best = window;
+        best_area = static_cast<long>(a.width) * a.height;
+      }
+    }
+    Window root_return, parent;
+    Window* children = nullptr;
+    unsigned count = 0;
+    if (XQueryTree(display_, window, &root_return, &parent, &children, &count))
+    {
+      for (unsigned i = 0; i < count; ++i)
+      {
+        findIn(children[i], title, best, best_area);
+      }
+      if (children) XFree(children);
+    }
+  }
+
+  bool waitForDamage(Clock::time_point deadline)
+  {
+    while (true)
+    {
+      while (XPending(display_) > 0)
+      {
+        XEvent e;
+        XNextEvent(display_, &e);
+        if (e.type == damage_event_ + XDamageNotify)
+        {
+          // Drain whatever else is queued, then take the whole accumulated damage at once.
+          while (XPending(display_) > 0)
+          {
+            XNextEvent(display_, &e);
+          }
+          return true;
+        }
+      }
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0)
+      {
+        return false;
+      }
+      pollfd fd{ConnectionNumber(display_), POLLIN, 0};
+      poll(&fd, 1, static_cast<int>(std::min<long long>(left, 100)));
+    }
+  }
+
+  bool damageTouchesRect()
+  {
+    XDamageSubtract(display_, damage_, None, parts_);
+    int count = 0;
+    XRectangle* rects = XFixesFetchRegion(display_, parts_, &count);
+    bool touches = false;
+    for (int i = 0; i < count && !touches; ++i)
+    {
+      const XRectangle& r = rects[i];
+      touches = r.x < rect_.x + rect_.width && r.x + r.width > rect_.x && r.y < rect_.y + rect_.height &&
+                r.y + r.height > rect_.y;
+    }
+    if (rects) XFree(rects);
+    return touches;
+  }
+
+  bool grabAndCompare()
+  {
+    const int next = 1 - current_;
+    grabs_[next]->grab();
+    const bool changed = std::memcmp(grabs_[next]->data(), grabs_[current_]->data(), grabs_[next]->bytes()) != 0;
+    current_ = next;
+    return changed;
+  }
+
+  Display* display_ = nullptr;
+  Window root_ = 0;
+  Rect root_rect_;
+  Rect rect_;
+  double poll_ms_;
+  int damage_event_ = 0;
+  Damage damage_ = 0;
+  XserverRegion parts_ = 0;
+  std::unique_ptr<ShmGrab> grabs_[2];
+  int current_ = 0;
+  long draws_ = 0;
+  Clock::time_point last_poll_ = Clock::now();
+};
+
+// ---- paths -----------------------------------------------------------------------------------
+constexpr double kPoseStep = 0.025;
+
+geometry_msgs::PoseStamped pose(const std_msgs::Header& header, double x, double y)
+{
+  geometry_msgs::PoseStamped p;
+  p.header = header;
+  p.pose.position.x = x;
+  p.pose.position.y = y;
+  p.pose.orientation.w = 1.0;
+  return p;
+}
+
+/**
+ * A straight path in base_link ending in the projector's lit area (base_link x 0.65 .. 2.0 m for
+ * the demo's mount): variant 0 at y = +0.25, variant 1 at y = -0.25. Long paths start far behind
+ * the robot; only their last ~1.1 m is in view. Stamp 0: drawn with the latest tf, also while the
+ * demo node is stopped.
+ */
+nav_msgs::Path straightPath(std::size_t poses, int variant)
+{
+  nav_msgs::Path path;
+  path.header.frame_id = "base_link";
+  path.header.stamp = ros::Time(0);
+  path.poses.reserve(poses);
+  const double y = variant == 0 ? 0.25 : -0.25;
+  const double end_x = 1.8;
+  for (std::size_t i = 0; i < poses; ++i)
+  {
+    path.poses.push_back(pose(path.header, end_x - kPoseStep * static_cast<double>(poses - 1 - i), y));
+  }
+  return path;
+}
+
+/**
+ * A planner's plan over a large hall: back and forth along x between x = -8 and 12 m, the lines
+ * 0.15 m apart from y = -8.5 m on (map frame), until `poses` poses. With Exact spacing 0.25 m a
+ * 100,000-pose path makes ~10,000 arrows that do not overlap; the demo robot drives over the part
+ * around (0..4, 0..2.5), so a few dozen of them are in the projector's view at any time while the
+ * renderer is handed all of them.
+ */
+nav_msgs::Path hallPath(std::size_t poses)
+{
+  nav_msgs::Path path;
+  path.header.frame_id = "map";
+  path.header.stamp = ros::Time(0);
+  path.poses.reserve(poses);
+  const double x0 = -8.0, x1 = 12.0, pitch = 0.15;
+  const int per_line = static_cast<int>((x1 - x0) / kPoseStep);
+  for (int line = 0; path.poses.size() < poses; ++line)
+  {
+    const double y = -8.5 + pitch * line;
+    for (int s = 0; s < per_line && path.poses.size() < poses; ++s)
+    {
+      const double along = kPoseStep * s;
+      path.poses.push_back(pose(path.header, line % 2 == 0 ? x0 + along : x1 - along, y));
+    }
+  }
+  return path;
+}
+
+// ---- the bench ---------------------------------------------------------------------------
+class Bench
+{
+public:
+  explicit Bench(const Options& options)
+    : o_(options), screen_(options.poll_ms), cpu_(options.pids, options.split_threads), rng_(12345u)
+  {
+    if (!o_.out.empty())
+    {
+      out_.open(o_.out, std::ios::app);
+      if (!out_) fail("cannot write " + o_.out);
+    }
+    publisher_ = nh_.advertise<nav_msgs::Path>(o_.path_topic, 1);
+    relay_ = nh_.subscribe<nav_msgs::Path>(o_.relay_from, 1, [this](const nav_msgs::Path::ConstPtr& msg) {
+      if (relaying_)
+      {
+        publisher_.publish(msg);
+      }
+    });
+  }
+
+  void run()
+  {
+    findWindow();
+    waitForSubscriber();
+    relaying_ = true;
+    note("waiting for the first frame");
+    if (!waitForChange(Clock::now() + std::chrono::seconds(60)))
+    {
+      fail("the window never changed: is the scene moving?");
+    }
+    for (const std::string& phase : o_.phases)
+    {
+      if (phase == "drive") drive("drive");
+      else if (phase == "idle") idle();
+      else if (phase == "latency") latency("latency", 45);
+      else if (phase == "latency100k") latency("latency100k", 100000);
+      else if (phase == "drive10k") drive10k();
+      else fail("unknown phase " + phase);
+    }
+    resumeDemo();
+    if (o_.place_image)
+    {
+      checkOnTop();
+    }
+  }
+
+private:
+  void emit(const std::string& phase, int trial, const std::string& metric, double value)
+  {
+    char line[512];
+    std::snprintf(line, sizeof line, "%s\t%s\t%d\t%s\t%.6g\n", o_.pipeline.c_str(), phase.c_str(), trial,
+                  metric.c_str(), value);
+    if (out_.is_open())
+    {
+      out_ << line << std::flush;
+    }
+    else
+    {
+      std::fputs(line, stdout);
+    }
+  }
+
+  void findWindow()
+  {
+    note("looking for a window titled '" + o_.window + "'");
+    const auto deadline = Clock::now() + std::chrono::seconds(90);
+    while ((window_ = screen_.findWindow(o_.window)) == 0)
+    {
+      if (Clock::now() > deadline) fail("no viewable window titled '" + o_.window + "'");
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    Rect rect = screen_.windowRect(window_);
+    if (o_.place_image)
+    {
+      rect = placeImage(rect);
+    }
+    rect = screen_.clipToScreen(rect);
+    char text[160];
+    std::snprintf(text, sizeof text, "watching %dx%d at %d,%d (window 0x%lx)", rect.width, rect.height, rect.x, rect.y,
+                  window_);
+    note(text);
+    emit("setup", 0, "watched_width", rect.width);
+    emit("setup", 0, "watched_height", rect.height);
+    emit("setup", 0, "watched_x", rect.x);
+    emit("setup", 0, "watched_y", rect.y);
+    if (rect.width <= 0 || rect.height <= 0) fail("the window is off screen");
+    screen_.watch(rect);
+  }
+
+  /**
+   * image_view's window holds a toolbar and a status bar around the image. The projector image is
+   * mostly black (nothing but arrows on a black background), the bars are not: the image is the
+   * bounding box of the rows and columns that are mostly black. Moves the window so the image lands
+   * at place_x, place_y (the projector screen) and raises it; returns the image's rectangle.
+   */
+  Rect placeImage(const Rect& window_rect)
+  {
+    Display* d = screen_.display();
+    // Wait for the first image (the window is grey until then).
+    Rect image{};
+    const auto deadline = Clock::now() + std::chrono::seconds(60);
+    while (Clock::now() < deadline)
+    {
+      const Rect on_screen = screen_.clipToScreen(screen_.windowRect(window_));
+      if (on_screen.width > 0 && on_screen.height > 0 && findDarkBox(on_screen, image))
+      {
+        break;
+      }
+      image = Rect{};
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    }
+    const Rect now_rect = screen_.windowRect(window_);
+    if (image.width == 0)
+    {
+      note("could not find the image inside the window: watching the whole window");
+      XMoveWindow(d, window_, o_.place_x, o_.place_y);
+      XRaiseWindow(d, window_);
+      XSync(d, False);
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      return screen_.windowRect(window_);
+    }
+    const int dx = image.x - now_rect.x, dy = image.y - now_rect.y;
+    char text[200];
+    std::snprintf(text, sizeof text, "image %dx%d at +%d+%d inside the %dx%d window", image.width, image.height, dx, dy,
+                  window_rect.width, window_rect.height);
+    note(text);
+    XMoveWindow(d, window_, o_.place_x - dx, o_.place_y - dy);
+    XRaiseWindow(d, window_);
+    XSync(d, False);
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    const Rect moved = screen_.windowRect(window_);
+    return Rect{moved.x + dx, moved.y + dy, image.width, image.height};
+  }
+
+  bool findDarkBox(const Rect& rect, Rect& box)
+  {
+    const std::vector<std::uint32_t> px = screen_.snapshot(rect);
+    auto dark = [](std::uint32_t p) { return (p & 0xF0F0F0u) == 0; };
+    int top = -1, bottom = -1, left = -1, right = -1;
+    for (int y = 0; y < rect.height; ++y)
+    {
+      int n = 0;
+      for (int x = 0; x < rect.width; ++x) n += dark(px[static_cast<std::size_t>(y) * rect.width + x]);
+      if (n * 2 > rect.width)
+      {
+        if (top < 0) top = y;
+        bottom = y;
+      }
+    }
+    if (top < 0) return false;
+    for (int x = 0; x < rect.width; ++x)
+    {
+      int n = 0;
+      for (int y = top; y <= bottom; ++y) n += dark(px[static_cast<std::size_t>(y) * rect.width + x]);
+      if (n * 2 > bottom - top + 1)
+      {
+        if (left < 0) left = x;
+        right = x;
+      }
+    }
+    box = Rect{rect.x + left, rect.y + top, right - left + 1, bottom - top + 1};
+    // Expect the image's size; allow a few rows/columns lost to a frame or the screen edge.
+    return std::abs(box.width - o_.image_width) <= 8 && box.height >= o_.image_height / 2;
+  }
+
+  void checkOnTop()
+  {
+    // Nothing may cover the watched image at the end (e.g. the projector window raising itself).
+    Window root_return, parent;
+    Window* children = nullptr;
+    unsigned count = 0;
+    XQueryTree(screen_.display(), DefaultRootWindow(screen_.display()), &root_return, &parent, &children, &count);
+    bool top = count > 0 && children[count - 1] == window_;
+    for (unsigned i = 0; i < count && !top; ++i)
+    {
+      // Windows mapped above ours that are not viewable do not count.
+      if (children[i] == window_)
+      {
+        top = true;
+        for (unsigned j = i + 1; j < count; ++j)
+        {
+          XWindowAttributes a;
+          if (XGetWindowAttributes(screen_.display(), children[j], &a) && a.map_state == IsViewable) top = false;
+        }
+      }
+    }
+    if (children) XFree(children);
+    emit("setup", 0, "window_on_top_at_end", top ? 1 : 0);
+  }
+
+  void waitForSubscriber()
+  {
+    const auto deadline = Clock::now() + std::chrono::seconds(60);
+    while (publisher_.getNumSubscribers() == 0)
+    {
+      if (Clock::now() > deadline) fail("nobody subscribes to " + o_.path_topic);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+
+  bool waitForChange(Clock::time_point deadline, Clock::time_point* when = nullptr)
+  {
+    Screen::Event e;
+    while (screen_.next(deadline, e))
+    {
+      if (e.changed)
+      {
+        if (when) *when = e.time;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Waits until no pixel changed for `quiet` (at most `limit`); false if it never settled.
+  bool waitQuiet(double quiet, double limit)
+  {
+    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+    while (Clock::now() < end)
+    {
+      const auto until = std::min(end, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(quiet)));
+      if (!waitForChange(until))
+      {
+        return Clock::now() >= until;
+      }
+    }
+    return false;
+  }
+
+  void sleepWatching(double s)
+  {
+    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+    Screen::Event e;
+    while (screen_.next(end, e))
+    {
+    }
+  }
+
+  /// One timed window: content changes and draws per second, and CPU per process.
+  void measure(const std::string& phase, int trial)
+  {
+    const long draws_before = screen_.draws();
+    cpu_.start();
+    const auto start = Clock::now();
+    const auto end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.trial_seconds));
+    long changes = 0;
+    Screen::Event e;
+    while (screen_.next(end, e))
+    {
+      changes += e.changed ? 1 : 0;
+    }
+    const double wall = seconds(Clock::now() - start);
+    const auto usage = cpu_.stop();
+    emit(phase, trial, "fps", changes / wall);
+    emit(phase, trial, "draws_per_s", (screen_.draws() - draws_before) / wall);
+    // total: the pipeline's processes; others: whatever else kept the machine busy meanwhile
+    // (system-wide busy time minus every measured process, the probe included).
+    double total = 0.0, measured = 0.0, system = 0.0;
+    for (const auto& u : usage)
+    {
+      if (u.first == "system")
+      {
+        system = u.second;
+        continue;
+      }
+      if (u.first.rfind("thread:", 0) == 0)
+      {
+        emit(phase, trial, "cpu." + u.first.substr(7), u.second);  // part of its process's figure
+        continue;
+      }
+      emit(phase, trial, "cpu." + u.first, u.second);
+      if (std::isfinite(u.second))
+      {
+        measured += u.second;
+        total += u.first == "probe" ? 0.0 : u.second;
+      }
+    }
+    emit(phase, trial, "cpu.total", total);
+    emit(phase, trial, "cpu.others", std::max(0.0, system - measured));
+  }
+
+  void drive(const std::string& phase)
+  {
+    resumeDemo();
+    relaying_ = true;
+    note(phase + ": robot driving, warming up");
+    sleepWatching(o_.warmup_seconds);
+    for (int t = 0; t < o_.trials; ++t)
+    {
+      measure(phase, t);
+    }
+    note(phase + ": done");
+  }
+
+  void idle()
+  {
+    // Keep the demo's plan: wait for it to replan once more through the relay, then stop it.
+    relaying_ = true;
+    resumeDemo();
+    sleepWatching(1.2);
+    pauseDemo();
+    note("idle: robot stopped, settling");
+    waitQuiet(1.0, 5.0);
+    for (int t = 0; t < o_.trials; ++t)
+    {
+      measure("idle", t);
+    }
+    note("idle: done");
+  }
+
+  void latency(const std::string& phase, std::size_t poses)
+  {
+    pauseDemo();
+    relaying_ = false;
+    const nav_msgs::Path paths[2] = {straightPath(poses, 0), straightPath(poses, 1)};
+    note(phase + ": " + std::to_string(poses) + "-pose paths");
+    // Put variant 1 up first, so that every trial changes the drawing.
+    publisher_.publish(paths[1]);
+    waitQuiet(0.5, 5.0);
+    std::uniform_real_distribution<double> jitter(0.0, 0.05);
+    int timeouts = 0;
+    for (int t = 0; t < o_.latency_trials; ++t)
+    {
+      if (!waitQuiet(0.3, 5.0))
+      {
+        note(phase + ": the window does not settle; measuring anyway");
+      }
+      // A random phase against rviz's and the projector's timers.
+      std::this_thread::sleep_for(std::chrono::duration<double>(jitter(rng_)));
+      const auto start = Clock::now();
+      publisher_.publish(paths[t % 2]);
+      Clock::time_point seen;
+      if (waitForChange(start + std::chrono::seconds(5), &seen))
+      {
+        emit(phase, t, "latency_ms", 1000.0 * seconds(seen - start));
+      }
+      else
+      {
+        ++timeouts;
+        emit(phase, t, "latency_timeout", 1);
+      }
+    }
+    note(phase + ": done" + (timeouts ? " (" + std::to_string(timeouts) + " timeouts)" : std::string()));
+  }
+
+  void drive10k()
+  {
+    relaying_ = false;
+    const nav_msgs::Path path = hallPath(100000);
+    publisher_.publish(path);
+    resumeDemo();
+    note("drive10k: robot driving over a 100,000-pose plan (~10,000 arrows), warming up");
+    sleepWatching(o_.warmup_seconds);
+    for (int t = 0; t < o_.trials; ++t)
+    {
+      measure("drive10k", t);
+    }
+    note("drive10k: done");
+  }
+
+  void pauseDemo()
+  {
+    if (o_.demo_pid > 0 && kill(o_.demo_pid, SIGSTOP) != 0) fail("cannot stop the demo node");
+  }
+  void resumeDemo()
+  {
+    if (o_.demo_pid > 0) kill(o_.demo_pid, SIGCONT);
+  }
+
+  Options o_;
+  Screen screen_;
+  CpuMeter cpu_;
+  std::mt19937 rng_;
+  std::ofstream out_;
+  Window window_ = 0;
+  ros::NodeHandle nh_;
+  ros::Publisher publisher_;
+  ros::Subscriber relay_;
+  std::atomic<bool> relaying_{false};
+};
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "rviz_projector_bench_probe", ros::init_options::AnonymousName);
+  const Options options = parseOptions(argc, argv);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  {
+    Bench bench(options);
+    bench.run();
+  }
+  spinner.stop();
+  return 0;
+}

@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Turns the probe's measurements (scripts/bench --e2e) into the comparison table.
+
+usage: summarize_e2e.py RESULTS.tsv [MACHINE.txt]
+
+RESULTS.tsv lines: pipeline, phase, trial, metric, value (tab separated), from
+rviz_projector_bench_probe. Prints min / median / max over the trials of each pipeline, the ratio
+of the medians (ours / baseline) and the issue's targets with PASS/FAIL.
+"""
+import collections
+import statistics
+import sys
+
+PIPELINES = ["ours", "baseline"]  # extra pipelines (e.g. ours-rviz1fps) get columns after these
+
+# (phase, metric, label, unit format)
+SECTIONS = [
+    ("Robot driving (demo scene)", "drive", [
+        ("fps", "frames/s delivered to the output window", "%.1f"),
+        ("draws_per_s", "  draws/s reaching the window (changed or not)", "%.1f"),
+        ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
+        ("cpu.rviz", "  rviz", "%.2f"),
+        ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
+        ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
+        ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
+        ("cpu.image_view", "  image_view", "%.2f"),
+        ("cpu.demo", "  demo_navigation", "%.3f"),
+        ("cpu.xorg", "  X server", "%.3f"),
+        ("cpu.probe", "  (probe, not counted)", "%.3f"),
+        ("cpu.others", "  (other processes on the machine)", "%.2f"),
+    ]),
+    ("Robot stopped, same plan (nothing changing)", "idle", [
+        ("fps", "frames/s delivered (content changes)", "%.1f"),
+        ("draws_per_s", "  draws/s reaching the window", "%.1f"),
+        ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
+        ("cpu.rviz", "  rviz", "%.2f"),
+        ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
+        ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
+        ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
+        ("cpu.image_view", "  image_view", "%.2f"),
+        ("cpu.demo", "  demo_navigation (stopped)", "%.3f"),
+        ("cpu.xorg", "  X server", "%.3f"),
+        ("cpu.others", "  (other processes on the machine)", "%.2f"),
+    ]),
+    ("Path to photon (new path -> first changed pixel of the output window)", None, [
+        ("latency:latency_ms", "45-pose path [ms]", "%.1f"),
+        ("latency100k:latency_ms", "100,000-pose path [ms]", "%.1f"),
+        ("latency:latency_timeout", "  trials without a change within 5 s", "%d"),
+    ]),
+    ("Robot driving under a 100,000-pose plan (~10,000 arrows)", "drive10k", [
+        ("fps", "frames/s delivered", "%.1f"),
+        ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
+        ("cpu.rviz", "  rviz", "%.2f"),
+        ("cpu.rviz.main", "    main thread", "%.2f"),
+        ("cpu.rviz.llvmpipe", "    llvmpipe threads", "%.2f"),
+        ("cpu.others", "  (other processes on the machine)", "%.2f"),
+    ]),
+]
+
+
+def load(path):
+    data = collections.defaultdict(list)
+    with open(path) as f:
+        for line in f:
+            parts = line.rstrip("\n").split("\t")
+            if len(parts) != 5:
+                continue
+            pipeline, phase, _trial, metric, value = parts
+            if pipeline not in PIPELINES:
+                PIPELINES.append(pipeline)
+            try:
+                data[(pipeline, phase, metric)].append(float(value))
+            except ValueError:
+                pass
+    return data
+
+
+def stats(values):
+    values = [v for v in values if v == v]  # drop NaN
+    if not values:
+        return None
+    return min(values), statistics.median(values), max(values), len(values)
+
+
+def cell(s, fmt):
+    if s is None:
+        return "-"
+    lo, med, hi, _n = s
+    return "%s / %s / %s" % (fmt % lo, fmt % med, fmt % hi)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    data = load(sys.argv[1])
+    if len(sys.argv) > 2:
+        with open(sys.argv[2]) as f:
+            print(f.read().rstrip())
+        print()
+
+    def get(pipeline, phase, metric):
+        if ":" in metric:
+            phase, metric = metric.split(":")
+        values = data.get((pipeline, phase, metric))
+        if metric == "latency_timeout":
+            trials = len(data.get((pipeline, phase, "latency_ms"), [])) + len(values or [])
+            return (sum(values or []),) * 3 + (trials,) if trials else None
+        return stats(values) if values else None
+
+    rows = []
+    for title, phase, metrics in SECTIONS:
+        rows.append((title,))
+        for metric, label, fmt in metrics:
+            cells = [get(p, phase, metric) for p in PIPELINES]
+            if all(c is None for c in cells):
+                continue
+            ratio = ""
+            if cells[0] and cells[1] and cells[1][1] > 0 and "timeout" not in metric:
+                ratio = "%.2f" % (cells[0][1] / cells[1][1])
+            n = "/".join(sorted({str(c[3]) for c in cells if c}))
+            rows.append((label, cell(cells[0], fmt), cell(cells[1], fmt), ratio, n) +
+                        tuple(cell(c, fmt) for c in cells[2:]))
+
+    header = ("", "ours: min / median / max", "baseline: min / median / max", "ratio", "trials") + tuple(
+        "%s: min / median / max" % p for p in PIPELINES[2:])
+    body = [r for r in rows if len(r) > 1]
+    widths = [max(len(r[i]) for r in body + [header]) for i in range(len(header))]
+    print("ours = ProjectorCamera full-screen window; baseline = its Image output (sensor_msgs/Image) "
+          "shown in image_view.")
+    print("ratio = median ours / median baseline. CPU in cores (1.00 = one core busy), from "
+          "/proc/<pid>/stat over each trial.")
+    print()
+    print("  ".join("{:<{}}".format(h, w) for h, w in zip(header, widths)).rstrip())
+    for row in rows:
+        if len(row) == 1:
+            print()
+            print(row[0])
+            continue
+        print("  ".join("{:<{}}".format(c, w) for c, w in zip(row, widths)).rstrip())
+
+    # The issue's targets (issue 5), checked against the medians/maxima above.
+    print()
+    print("Targets (issue 5)")
+    med = lambda p, ph, m: (get(p, ph, m) or (None, None, None, 0))[1]
+    mx = lambda p, ph, m: (get(p, ph, m) or (None, None, None, 0))[2]
+    checks = []
+
+    def check(text, value, ok):
+        checks.append((text, "n/a" if value is None else value, "-" if ok is None else ("PASS" if ok else "FAIL")))
+
+    lat = med("ours", "latency", "latency_ms")
+    lat_max = mx("ours", "latency", "latency_ms")
+    lat100k = med("ours", "latency100k", "latency_ms")
+    fps = med("ours", "drive", "fps")
+    cpu_drive = (med("ours", "drive", "cpu.total"), med("baseline", "drive", "cpu.total"))
+    cpu_idle = (med("ours", "idle", "cpu.total"), med("baseline", "idle", "cpu.total"))
+    fps10k = med("ours", "drive10k", "fps")
+    check("latency median <= 35 ms", None if lat is None else "%.1f ms" % lat, None if lat is None else lat <= 35)
+    check("latency max <= 60 ms", None if lat_max is None else "%.1f ms" % lat_max,
+          None if lat_max is None else lat_max <= 60)
+    check("latency, 100,000-pose path, median <= 50 ms", None if lat100k is None else "%.1f ms" % lat100k,
+          None if lat100k is None else lat100k <= 50)
+    check("driving: >= 55 frames/s delivered", None if fps is None else "%.1f /s" % fps,
+          None if fps is None else fps >= 55)
+    if None not in cpu_drive:
+        check("driving: CPU <= baseline's", "%.2f vs %.2f cores" % cpu_drive, cpu_drive[0] <= cpu_drive[1])
+    if None not in cpu_idle and cpu_idle[1] > 0:
+        check("nothing changing: CPU <= 0.3 x baseline's", "%.2f vs %.2f cores (%.2fx)" % (
+            cpu_idle[0], cpu_idle[1], cpu_idle[0] / cpu_idle[1]), cpu_idle[0] <= 0.3 * cpu_idle[1])
+    check("10,000 arrows: >= 30 frames/s", None if fps10k is None else "%.1f /s" % fps10k,
+          None if fps10k is None else fps10k >= 30)
+    w = max(len(c[0]) for c in checks)
+    for text, value, verdict in checks:
+        print("  {:<{}}  {:<4}  {}".format(text, w, verdict, value))
+    others = [med(p, ph, "cpu.others") for p in PIPELINES for ph in ("drive", "idle", "drive10k")]
+    others = [o for o in others if o is not None]
+    if others and max(others) > 0.15:
+        print()
+        print("WARNING: other processes used up to %.2f cores during the trials (median of a phase): "
+              "the machine was not idle, figures are pessimistic." % max(others))
+
+
+if __name__ == "__main__":
+    main()
