@@ -1,6 +1,7 @@
 #include "rviz_projector/nodes/calibration_file.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
