@@ -34,13 +34,6 @@ install(TARGETS path_to_markers projector_info_publisher
 )
 
 if(CATKIN_ENABLE_TESTING)
-  # CMakeLists.txt finds rostest in its own test section, which comes after this file; find it here
-  # only if nobody has yet. (Hidden from catkin_lint, which would call the later find a duplicate.)
-  if(NOT COMMAND add_rostest_gtest)
-    #catkin_lint: skip
-    find_package(rostest REQUIRED)
-  endif()
-
   # Each test starts the node under test from its .test file and talks to it over ROS; the
   # projector_info_publisher test also runs the binary itself on bad files to check the exit status
   # and the error text.
