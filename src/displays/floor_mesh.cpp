@@ -1,7 +1,5 @@
 #include "rviz_projector/displays/floor_mesh.h"
 
-#include <atomic>
-
 #include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
 #include <OgreResourceGroupManager.h>
@@ -10,25 +8,18 @@
 #include <OgreSceneNode.h>
 #include <OgreTechnique.h>
 
+#include "rviz_projector/displays/ogre_name.h"
+
 namespace rviz_projector
 {
-namespace
-{
-std::string uniqueName(const char* prefix)
-{
-  static std::atomic<unsigned> counter{0};
-  return std::string(prefix) + std::to_string(counter++);
-}
-}  // namespace
-
 FloorMesh::FloorMesh(Ogre::SceneManager* scene_manager, Ogre::SceneNode* parent)
   : scene_manager_(scene_manager)
 {
   node_ = parent->createChildSceneNode();
-  manual_ = scene_manager_->createManualObject(uniqueName("rviz_projector_mesh_"));
+  manual_ = scene_manager_->createManualObject(uniqueOgreName("rviz_projector_mesh_"));
   manual_->setDynamic(true);
   node_->attachObject(manual_);
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
   material_->setReceiveShadows(false);
   material_->setCullingMode(Ogre::CULL_NONE);
 }

@@ -38,6 +38,7 @@
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/ogre_name.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projector_footprint_visual.h"
 #include "rviz_projector/displays/projector_output_window.h"
@@ -169,9 +170,7 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
 
 void ProjectorCameraDisplay::onInitialize()
 {
-  static unsigned instance_counter = 0;
-  const std::string id = "rviz_projector_camera_" + std::to_string(instance_counter++);
-  camera_ = scene_manager_->createCamera(id);
+  camera_ = scene_manager_->createCamera(uniqueOgreName("rviz_projector_camera_"));
   camera_node_ = scene_manager_->getRootSceneNode()->createChildSceneNode();
   camera_node_->attachObject(camera_);
   updateCameraSettings();

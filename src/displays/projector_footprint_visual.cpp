@@ -1,6 +1,5 @@
 #include "rviz_projector/displays/projector_footprint_visual.h"
 
-#include <atomic>
 #include <string>
 
 #include <OgreManualObject.h>
@@ -11,16 +10,12 @@
 #include <OgreSceneNode.h>
 #include <OgreTechnique.h>
 
+#include "rviz_projector/displays/ogre_name.h"
+
 namespace rviz_projector
 {
 namespace
 {
-std::string uniqueName(const char* prefix)
-{
-  static std::atomic<unsigned> counter{0};
-  return std::string(prefix) + std::to_string(counter++);
-}
-
 Ogre::Vector3 toOgre(const Vec3& v)
 {
   return Ogre::Vector3(static_cast<Ogre::Real>(v.x), static_cast<Ogre::Real>(v.y), static_cast<Ogre::Real>(v.z));
@@ -31,10 +26,10 @@ ProjectorFootprintVisual::ProjectorFootprintVisual(Ogre::SceneManager* scene_man
   : scene_manager_(scene_manager)
 {
   node_ = parent->createChildSceneNode();
-  lines_ = scene_manager_->createManualObject(uniqueName("rviz_projector_footprint_"));
+  lines_ = scene_manager_->createManualObject(uniqueOgreName("rviz_projector_footprint_"));
   lines_->setDynamic(true);
   node_->attachObject(lines_);
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueName("rviz_projector_footprint_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_footprint_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
   Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
   pass->setLightingEnabled(false);
   pass->setVertexColourTracking(Ogre::TVC_DIFFUSE);

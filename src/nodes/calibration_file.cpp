@@ -1,5 +1,7 @@
 #include "rviz_projector/nodes/calibration_file.h"
 
+#include "rviz_projector/displays/ros_conversions.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -271,24 +273,6 @@ void addLensWarnings(const sensor_msgs::CameraInfo& info, std::vector<std::strin
 }
 }  // namespace
 
-LensCalibration lensCalibrationOf(const sensor_msgs::CameraInfo& info)
-{
-  LensCalibration c;
-  c.width = info.width;
-  c.height = info.height;
-  c.distortion_model = info.distortion_model;
-  c.D = info.D;
-  std::copy(info.K.begin(), info.K.end(), c.K.begin());
-  std::copy(info.P.begin(), info.P.end(), c.P.begin());
-  c.binning_x = info.binning_x;
-  c.binning_y = info.binning_y;
-  c.roi_x_offset = info.roi.x_offset;
-  c.roi_y_offset = info.roi.y_offset;
-  c.roi_width = info.roi.width;
-  c.roi_height = info.roi.height;
-  return c;
-}
-
 std::string resolveCalibrationUrl(const std::string& url, std::string& path)
 {
   static const std::string kPackage = "package://";
@@ -390,7 +374,7 @@ std::string loadCalibrationFile(const std::string& url, CalibrationFile& out)
   }
 
   PinholeModel model;
-  const LensCheck check = PinholeModel::fromCalibration(lensCalibrationOf(out.info), model);
+  const LensCheck check = PinholeModel::fromCalibration(toLensCalibration(out.info), model);
   if (!check.ok())
   {
     return name + ": unusable calibration: " + check.error;

@@ -31,6 +31,7 @@
 
 #include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/ros_conversions.h"
 #include "rviz_projector/nodes/path_markers.h"
 
 namespace rviz_projector
@@ -134,13 +135,6 @@ SpacingMode modeParam(const ros::NodeHandle& pnh)
   return SpacingMode::Exact;
 }
 
-bool isFinitePose(const geometry_msgs::Pose& pose)
-{
-  const double values[] = {pose.position.x,    pose.position.y,    pose.position.z,   pose.orientation.x,
-                           pose.orientation.y, pose.orientation.z, pose.orientation.w};
-  return std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); });
-}
-
 class PathToMarkers
 {
 public:
@@ -227,20 +221,7 @@ private:
       }
     }
 
-    points_.clear();
-    points_.reserve(msg->poses.size());
-    std::size_t dropped = 0;
-    for (const auto& stamped : msg->poses)
-    {
-      if (!isFinitePose(stamped.pose))
-      {
-        ++dropped;
-        continue;
-      }
-      const geometry_msgs::Point& p = stamped.pose.position;
-      const Vec3 q = to_target.apply(Vec3{p.x, p.y, p.z});
-      points_.push_back(Vec2{q.x, q.y});
-    }
+    const std::size_t dropped = pathToFloorPoints(*msg, to_target, points_);
     if (dropped > 0)
     {
       ROS_WARN_THROTTLE(kWarnPeriod, "%s: %zu of %zu path poses have NaN/Inf values and were dropped", kName, dropped,

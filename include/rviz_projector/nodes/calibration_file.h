@@ -37,7 +37,4 @@ std::string resolveCalibrationUrl(const std::string& url, std::string& path);
  * "<file>: <problem>", e.g. "/x.yaml: missing field 'camera_matrix'".
  */
 std::string loadCalibrationFile(const std::string& url, CalibrationFile& out);
-
-/// The lens numbers of a CameraInfo as the ROS-free core sees them.
-LensCalibration lensCalibrationOf(const sensor_msgs::CameraInfo& info);
 }  // namespace rviz_projector
