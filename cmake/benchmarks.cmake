@@ -10,6 +10,7 @@ if(benchmark_FOUND)
   add_executable(${PROJECT_NAME}_microbench
     bench/micro/bench_paths.cpp
     bench/micro/micro_benchmarks.cpp
+    bench/micro/mesh_benchmarks.cpp
     bench/micro/reference_baseline.cpp
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)

@@ -246,14 +246,21 @@ std::map<std::string, long long> threadTicks(pid_t pid)
   return groups;
 }
 
-/// Busy time of all cores (everything but idle and iowait), in clock ticks.
-long long systemBusyTicks()
+/// Time all cores ran something (user, system, interrupts), and time the hypervisor gave them to
+/// someone else (steal: a virtual machine's CPUs are not always its own), in clock ticks.
+struct SystemTicks
+{
+  long long busy = 0;
+  long long steal = 0;
+};
+
+SystemTicks systemTicks()
 {
   std::ifstream in("/proc/stat");
   std::string cpu;
   long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
   in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
-  return user + nice + system + irq + softirq + steal;
+  return SystemTicks{user + nice + system + irq + softirq, steal};
 }
 
 class CpuMeter
@@ -268,7 +275,7 @@ public:
   void start()
   {
     start_time_ = Clock::now();
-    system_start_ = systemBusyTicks();
+    system_start_ = systemTicks();
     start_.clear();
     thread_start_.clear();
     for (const auto& p : pids_)
@@ -305,7 +312,9 @@ public:
         out.emplace_back("thread:" + p.first + "." + group.first, std::max(0LL, group.second - start) / hz / wall);
       }
     }
-    out.emplace_back("system", (systemBusyTicks() - system_start_) / hz / wall);
+    const SystemTicks system = systemTicks();
+    out.emplace_back("system", (system.busy - system_start_.busy) / hz / wall);
+    out.emplace_back("steal", (system.steal - system_start_.steal) / hz / wall);
     return out;
   }
 
@@ -325,7 +334,7 @@ private:
   std::string split_;
   std::vector<long long> start_;
   std::map<std::string, long long> thread_start_;
-  long long system_start_ = 0;
+  SystemTicks system_start_;
   Clock::time_point start_time_;
 };
 
@@ -938,13 +947,19 @@ private:
     emit(phase, trial, "fps", changes / wall);
     emit(phase, trial, "draws_per_s", (screen_.draws() - draws_before) / wall);
     // total: the pipeline's processes; others: whatever else kept the machine busy meanwhile
-    // (system-wide busy time minus every measured process, the probe included).
+    // (system-wide busy time minus every measured process, the probe included); steal: time the
+    // hypervisor did not give to this virtual machine at all.
     double total = 0.0, measured = 0.0, system = 0.0;
     for (const auto& u : usage)
     {
       if (u.first == "system")
       {
         system = u.second;
+        continue;
+      }
+      if (u.first == "steal")
+      {
+        emit(phase, trial, "cpu.steal", u.second);
         continue;
       }
       if (u.first.rfind("thread:", 0) == 0)

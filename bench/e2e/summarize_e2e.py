@@ -11,7 +11,7 @@ import collections
 import statistics
 import sys
 
-PIPELINES = ["ours", "baseline"]  # extra pipelines (e.g. ours-rviz1fps) get columns after these
+PIPELINES = []  # in the order they appear in the results
 
 # (phase, metric, label, unit format)
 SECTIONS = [
@@ -28,6 +28,7 @@ SECTIONS = [
         ("cpu.xorg", "  X server", "%.3f"),
         ("cpu.probe", "  (probe, not counted)", "%.3f"),
         ("cpu.others", "  (other processes on the machine)", "%.2f"),
+        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
     ]),
     ("Robot stopped, same plan (nothing changing)", "idle", [
         ("fps", "frames/s delivered (content changes)", "%.1f"),
@@ -41,6 +42,7 @@ SECTIONS = [
         ("cpu.demo", "  demo_navigation (stopped)", "%.3f"),
         ("cpu.xorg", "  X server", "%.3f"),
         ("cpu.others", "  (other processes on the machine)", "%.2f"),
+        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
     ]),
     ("Path to photon (new path -> first changed pixel of the output window)", None, [
         ("latency:latency_ms", "45-pose path [ms]", "%.1f"),
@@ -54,6 +56,7 @@ SECTIONS = [
         ("cpu.rviz.main", "    main thread", "%.2f"),
         ("cpu.rviz.llvmpipe", "    llvmpipe threads", "%.2f"),
         ("cpu.others", "  (other processes on the machine)", "%.2f"),
+        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
     ]),
 ]
 
@@ -89,6 +92,28 @@ def cell(s, fmt):
     return "%s / %s / %s" % (fmt % lo, fmt % med, fmt % hi)
 
 
+CONFIGURATIONS = {
+    "": "rviz as installed (its render windows use 4x multisampling)",
+    "noaa": "rviz --disable-anti-aliasing (no multisampling in any render window)",
+}
+
+
+def groups_of(pipelines):
+    """[(title, ours, baseline)]: ours<suffix> with baseline<suffix>; anything else on its own."""
+    groups = collections.OrderedDict()
+    for p in pipelines:
+        base, _, suffix = p.partition("+")
+        if base in ("ours", "baseline"):
+            key = ("pair", suffix)
+            title = CONFIGURATIONS.get(suffix, "rviz with +" + suffix)
+        else:
+            key = ("single", p)
+            title = p
+        g = groups.setdefault(key, {"title": title, "ours": None, "baseline": None})
+        g["baseline" if base == "baseline" else "ours"] = p
+    return [(g["title"], g["ours"], g["baseline"]) for g in groups.values()]
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
@@ -99,6 +124,8 @@ def main():
         print()
 
     def get(pipeline, phase, metric):
+        if pipeline is None:
+            return None
         if ":" in metric:
             phase, metric = metric.split(":")
         values = data.get((pipeline, phase, metric))
@@ -107,40 +134,56 @@ def main():
             return (sum(values or []),) * 3 + (trials,) if trials else None
         return stats(values) if values else None
 
-    rows = []
-    for title, phase, metrics in SECTIONS:
-        rows.append((title,))
-        for metric, label, fmt in metrics:
-            cells = [get(p, phase, metric) for p in PIPELINES]
-            if all(c is None for c in cells):
+    print("ours = ProjectorCamera full-screen window on the projector screen; baseline = the same scene "
+          "through its Image output (sensor_msgs/Image) shown 1:1 in image_view on the projector screen.")
+    print("min / median / max over the trials; ratio = median ours / median baseline. CPU in cores "
+          "(1.00 = one core busy), from /proc/<pid>/stat over each trial.")
+    warnings = []
+    for title, ours, baseline in groups_of(PIPELINES):
+        print()
+        print("=" * 100)
+        print(title + ("" if ours and baseline else ""))
+        print("=" * 100)
+        rows = []
+        for section, phase, metrics in SECTIONS:
+            rows.append((section,))
+            for metric, label, fmt in metrics:
+                cells = [get(ours, phase, metric), get(baseline, phase, metric)]
+                if all(c is None for c in cells):
+                    continue
+                ratio = ""
+                if cells[0] and cells[1] and cells[1][1] > 0 and "timeout" not in metric:
+                    ratio = "%.2f" % (cells[0][1] / cells[1][1])
+                n = "/".join(sorted({str(c[3]) for c in cells if c}))
+                rows.append((label, cell(cells[0], fmt), cell(cells[1], fmt), ratio, n))
+        header = ("", "%s: min / median / max" % (ours or "-"), "%s: min / median / max" % (baseline or "-"),
+                  "ratio", "trials")
+        body = [r for r in rows if len(r) > 1]
+        widths = [max(len(r[i]) for r in body + [header]) for i in range(len(header))]
+        print("  ".join("{:<{}}".format(h, w) for h, w in zip(header, widths)).rstrip())
+        for row in rows:
+            if len(row) == 1:
+                print()
+                print(row[0])
                 continue
-            ratio = ""
-            if cells[0] and cells[1] and cells[1][1] > 0 and "timeout" not in metric:
-                ratio = "%.2f" % (cells[0][1] / cells[1][1])
-            n = "/".join(sorted({str(c[3]) for c in cells if c}))
-            rows.append((label, cell(cells[0], fmt), cell(cells[1], fmt), ratio, n) +
-                        tuple(cell(c, fmt) for c in cells[2:]))
+            print("  ".join("{:<{}}".format(c, w) for c, w in zip(row, widths)).rstrip())
+        if ours:
+            print_targets(get, ours, baseline)
+        for metric, what in (("cpu.others", "other processes used"), ("cpu.steal", "the hypervisor stole")):
+            values = [get(p, ph, metric) for p in (ours, baseline) for ph in ("drive", "idle", "drive10k")]
+            values = [v[1] for v in values if v is not None]
+            if values and max(values) > 0.15:
+                warnings.append("%s: %s up to %.2f cores during the trials (median of a phase)" % (
+                    title, what, max(values)))
+    if warnings:
+        print()
+        print("WARNING: the machine was not idle, figures are pessimistic:")
+        for w in warnings:
+            print("  " + w)
 
-    header = ("", "ours: min / median / max", "baseline: min / median / max", "ratio", "trials") + tuple(
-        "%s: min / median / max" % p for p in PIPELINES[2:])
-    body = [r for r in rows if len(r) > 1]
-    widths = [max(len(r[i]) for r in body + [header]) for i in range(len(header))]
-    print("ours = ProjectorCamera full-screen window; baseline = its Image output (sensor_msgs/Image) "
-          "shown in image_view.")
-    print("ratio = median ours / median baseline. CPU in cores (1.00 = one core busy), from "
-          "/proc/<pid>/stat over each trial.")
-    print()
-    print("  ".join("{:<{}}".format(h, w) for h, w in zip(header, widths)).rstrip())
-    for row in rows:
-        if len(row) == 1:
-            print()
-            print(row[0])
-            continue
-        print("  ".join("{:<{}}".format(c, w) for c, w in zip(row, widths)).rstrip())
 
-    # The issue's targets (issue 5), checked against the medians/maxima above.
-    print()
-    print("Targets (issue 5)")
+def print_targets(get, ours, baseline):
+    """The issue's targets (issue 5), checked against the medians / maxima above."""
     med = lambda p, ph, m: (get(p, ph, m) or (None, None, None, 0))[1]
     mx = lambda p, ph, m: (get(p, ph, m) or (None, None, None, 0))[2]
     checks = []
@@ -148,13 +191,13 @@ def main():
     def check(text, value, ok):
         checks.append((text, "n/a" if value is None else value, "-" if ok is None else ("PASS" if ok else "FAIL")))
 
-    lat = med("ours", "latency", "latency_ms")
-    lat_max = mx("ours", "latency", "latency_ms")
-    lat100k = med("ours", "latency100k", "latency_ms")
-    fps = med("ours", "drive", "fps")
-    cpu_drive = (med("ours", "drive", "cpu.total"), med("baseline", "drive", "cpu.total"))
-    cpu_idle = (med("ours", "idle", "cpu.total"), med("baseline", "idle", "cpu.total"))
-    fps10k = med("ours", "drive10k", "fps")
+    lat = med(ours, "latency", "latency_ms")
+    lat_max = mx(ours, "latency", "latency_ms")
+    lat100k = med(ours, "latency100k", "latency_ms")
+    fps = med(ours, "drive", "fps")
+    cpu_drive = (med(ours, "drive", "cpu.total"), med(baseline, "drive", "cpu.total"))
+    cpu_idle = (med(ours, "idle", "cpu.total"), med(baseline, "idle", "cpu.total"))
+    fps10k = med(ours, "drive10k", "fps")
     check("latency median <= 35 ms", None if lat is None else "%.1f ms" % lat, None if lat is None else lat <= 35)
     check("latency max <= 60 ms", None if lat_max is None else "%.1f ms" % lat_max,
           None if lat_max is None else lat_max <= 60)
@@ -169,15 +212,11 @@ def main():
             cpu_idle[0], cpu_idle[1], cpu_idle[0] / cpu_idle[1]), cpu_idle[0] <= 0.3 * cpu_idle[1])
     check("10,000 arrows: >= 30 frames/s", None if fps10k is None else "%.1f /s" % fps10k,
           None if fps10k is None else fps10k >= 30)
+    print()
+    print("Targets (issue 5) for %s" % ours)
     w = max(len(c[0]) for c in checks)
     for text, value, verdict in checks:
         print("  {:<{}}  {:<4}  {}".format(text, w, verdict, value))
-    others = [med(p, ph, "cpu.others") for p in PIPELINES for ph in ("drive", "idle", "drive10k")]
-    others = [o for o in others if o is not None]
-    if others and max(others) > 0.15:
-        print()
-        print("WARNING: other processes used up to %.2f cores during the trials (median of a phase): "
-              "the machine was not idle, figures are pessimistic." % max(others))
 
 
 if __name__ == "__main__":

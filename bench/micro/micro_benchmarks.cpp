@@ -3,6 +3,7 @@
 //   Spacer/Exact/<poses>, Spacer/Paper/<poses>   PathSpacer::space           vs Baseline/SparsePoints
 //   ArrowOutline/<arrows>                         flat arrow triangles        vs Baseline/ArrowMarkers
 //   PathUpdate/<poses>                            ProjectedPath's CPU update  vs Baseline/PathUpdate
+//   PathUpdate+Mesh/<poses>  (mesh_benchmarks.cpp) the same + FloorMesh fill vs Baseline/PathUpdate
 //
 // The label "vs=<name>" names the baseline a row is compared with (same size); scripts/bench
 // prints the ratio of times. Items/s are poses/s (spacer, path update) or arrows/s (outlines).

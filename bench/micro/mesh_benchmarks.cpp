@@ -1,0 +1,76 @@
+// The ProjectedPath update including the hand-over to the renderer: everything of PathUpdate plus
+// FloorMesh::setFlatTriangles (the OGRE ManualObject the display draws all arrows with). OGRE runs
+// without a render system or X server here: vertex buffers are OGRE's system-memory
+// DefaultHardwareBufferManager, so this counts the CPU work of filling them, not the GL upload.
+#include <memory>
+#include <vector>
+
+#include <OgreDefaultHardwareBufferManager.h>
+#include <OgreLogManager.h>
+#include <OgreMaterialManager.h>
+#include <OgreRoot.h>
+#include <OgreSceneManager.h>
+#include <benchmark/benchmark.h>
+
+#include "bench_paths.h"
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/core/disc_outline.h"
+#include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/ros_conversions.h"
+
+namespace
+{
+using namespace rviz_projector;
+
+/// A headless OGRE: root without plugins or render system, software hardware buffers.
+Ogre::SceneManager* headlessScene()
+{
+  static Ogre::SceneManager* scene = [] {
+    auto* log = new Ogre::LogManager();
+    log->createLog("rviz_projector_microbench_ogre.log", true, false, true);  // no file, no console
+    auto* root = new Ogre::Root("", "", "");
+    new Ogre::DefaultHardwareBufferManager();
+    Ogre::MaterialManager::getSingleton().initialise();  // default technique + pass (Root::initialise would)
+    return root->createSceneManager();
+  }();
+  return scene;
+}
+
+void BM_PathUpdateMesh(benchmark::State& state)
+{
+  const nav_msgs::Path& path = rviz_projector_bench::pathMessage(static_cast<std::size_t>(state.range(0)));
+  Ogre::SceneManager* scene = headlessScene();
+  FloorMesh arrow_mesh(scene, scene->getRootSceneNode());
+  FloorMesh circle_mesh(scene, scene->getRootSceneNode());
+  const Ogre::ColourValue magenta(1, 0, 1, 1), green(0, 1, 0, 1);
+  const SpacingParameters parameters;
+  PathSpacer spacer(parameters);
+  const RigidTransform to_fixed;  // the transform lookup is in PathUpdate; identity here
+  std::vector<Vec2> floor_points, arrow_triangles, circle_triangles;
+  for (auto _ : state)
+  {
+    pathToFloorPoints(path, to_fixed, floor_points);
+    const SpacedPath& spaced = spacer.space(floor_points);
+    arrow_triangles.clear();
+    arrow_triangles.reserve(spaced.arrows.size() * ArrowOutline::kVerticesPerArrow);
+    for (const Arrow& arrow : spaced.arrows)
+    {
+      ArrowOutline(arrow, parameters.arrow).appendTriangles(arrow_triangles);
+    }
+    circle_triangles.clear();
+    if (spaced.has_destination)
+    {
+      DiscOutline(spaced.destination, parameters.circle_diameter).appendTriangles(circle_triangles);
+    }
+    arrow_mesh.setFlatTriangles(arrow_triangles, 0.011, magenta);
+    circle_mesh.setFlatTriangles(circle_triangles, 0.01, green);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+  state.counters["arrows"] = static_cast<double>(arrow_mesh.triangleCount() / 3);
+  state.SetLabel("vs=Baseline/PathUpdate");  // which stops at the MarkerArray: nothing drawn yet
+}
+}  // namespace
+
+BENCHMARK(BM_PathUpdateMesh)->Name("PathUpdate+Mesh")->RangeMultiplier(10)->Range(100, 100000)->Unit(benchmark::kMicrosecond);
