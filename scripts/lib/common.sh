@@ -28,7 +28,7 @@ rp_packages() {
       libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
       librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
-      tf2-tools"
+      tf2-tools clang libclang-rt-14-dev"
   fi
 }
 

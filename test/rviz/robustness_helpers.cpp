@@ -1,0 +1,261 @@
+#include "robustness_helpers.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <OgreCamera.h>
+#include <OgreManualObject.h>
+#include <OgreMaterialManager.h>
+#include <OgreRenderTarget.h>
+#include <OgreRoot.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <QApplication>
+#include <QGuiApplication>
+#include <QScreen>
+#include <QThread>
+#include <QWindow>
+#include <rviz/config.h>
+#include <rviz/display.h>
+#include <rviz/display_group.h>
+#include <rviz/visualization_manager.h>
+#include <rviz/yaml_config_reader.h>
+
+#include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_output_window.h"
+#include "rviz_test_fixture.h"
+
+namespace rviz_projector_test
+{
+using rviz_projector::Vec3;
+
+nav_msgs::Path makePath(const std::string& frame, const std::vector<Vec3>& points, double qx, double qy, double qz,
+                        double qw)
+{
+  nav_msgs::Path path;
+  path.header.frame_id = frame;
+  path.header.stamp = ros::Time(0);
+  path.poses.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    geometry_msgs::PoseStamped& pose = path.poses[i];
+    pose.header = path.header;
+    pose.pose.position.x = points[i].x;
+    pose.pose.position.y = points[i].y;
+    pose.pose.position.z = points[i].z;
+    pose.pose.orientation.x = qx;
+    pose.pose.orientation.y = qy;
+    pose.pose.orientation.z = qz;
+    pose.pose.orientation.w = qw;
+  }
+  return path;
+}
+
+std::vector<Vec3> line(const Vec3& from, const Vec3& to, std::size_t n)
+{
+  std::vector<Vec3> points(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double t = static_cast<double>(i) / static_cast<double>(n - 1);
+    points[i] = from + (to - from) * t;
+  }
+  points.back() = to;
+  return points;
+}
+
+std::size_t defaultExactArrows(double length)
+{
+  const double first_tip = 0.10 + 0.05, arrow = 0.10 + 0.08, spacing = 0.25;
+  if (first_tip + arrow > length)
+  {
+    return 0;
+  }
+  return static_cast<std::size_t>(std::floor((length - first_tip - arrow) / spacing + 1e-9)) + 1;
+}
+
+sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy)
+{
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = frame;
+  info.width = w;
+  info.height = h;
+  info.distortion_model = "plumb_bob";
+  info.D = {0, 0, 0, 0, 0};
+  info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
+geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
+                                               double y, double z, double pitch)
+{
+  // Body (x forward, z up) pitched down about y, then body -> optical (z forward, x right, y down).
+  const double body[4] = {0.0, std::sin(pitch / 2), 0.0, std::cos(pitch / 2)};
+  const double b2o[4] = {-0.5, 0.5, -0.5, 0.5};
+  double q[4];
+  q[0] = body[3] * b2o[0] + body[0] * b2o[3] + body[1] * b2o[2] - body[2] * b2o[1];
+  q[1] = body[3] * b2o[1] - body[0] * b2o[2] + body[1] * b2o[3] + body[2] * b2o[0];
+  q[2] = body[3] * b2o[2] + body[0] * b2o[1] - body[1] * b2o[0] + body[2] * b2o[3];
+  q[3] = body[3] * b2o[3] - body[0] * b2o[0] - body[1] * b2o[1] - body[2] * b2o[2];
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time::now();
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = x;
+  t.transform.translation.y = y;
+  t.transform.translation.z = z;
+  t.transform.rotation.x = q[0];
+  t.transform.rotation.y = q[1];
+  t.transform.rotation.z = q[2];
+  t.transform.rotation.w = q[3];
+  return t;
+}
+
+int projectorWindows(bool visible_only)
+{
+  int n = 0;
+  for (QWidget* w : QApplication::topLevelWidgets())
+  {
+    if (qobject_cast<rviz_projector::ProjectorOutputWindow*>(w) && (!visible_only || w->isVisible()))
+    {
+      ++n;
+    }
+  }
+  return n;
+}
+
+int countColour(const QImage& image, QRgb colour, int tolerance)
+{
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+  {
+    for (int x = 0; x < image.width(); ++x)
+    {
+      n += sameColour(image.pixel(x, y), colour, tolerance) ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector)
+{
+  rviz_projector::ProjectorOutputWindow* window = projector ? projector->outputWindow() : nullptr;
+  if (!window || !window->isVisible())
+  {
+    return QImage();
+  }
+  projector->renderNow();
+  for (int i = 0; i < 20; ++i)
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 5);
+    QThread::msleep(5);
+  }
+  QScreen* screen = window->windowHandle() ? window->windowHandle()->screen() : QGuiApplication::primaryScreen();
+  const QImage whole = screen->grabWindow(window->winId()).toImage().convertToFormat(QImage::Format_RGB888);
+  int left, top, width, height;
+  projector->viewportPixels(left, top, width, height);
+  return whole.copy(left, top, width, height);
+}
+
+std::string OgreCounts::describe() const
+{
+  std::ostringstream s;
+  s << manual_objects << " manual objects, " << cameras << " cameras, " << scene_nodes << " scene nodes, "
+    << render_targets << " render targets, " << materials << " materials";
+  return s.str();
+}
+
+namespace
+{
+std::size_t countNodes(Ogre::Node* node)
+{
+  std::size_t n = 1;
+  for (Ogre::Node* child : node->getChildren())
+  {
+    n += countNodes(child);
+  }
+  return n;
+}
+}  // namespace
+
+OgreCounts ogreCounts(Ogre::SceneManager* scene_manager)
+{
+  OgreCounts c;
+  c.manual_objects = scene_manager->getMovableObjects("ManualObject").size();
+  c.cameras = scene_manager->getCameras().size();
+  c.scene_nodes = countNodes(scene_manager->getRootSceneNode());
+  auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
+  while (targets.hasMoreElements())
+  {
+    ++c.render_targets;
+    targets.moveNext();
+  }
+  std::size_t materials = 0;
+  auto it = Ogre::MaterialManager::getSingleton().getResourceIterator();
+  while (it.hasMoreElements())
+  {
+    ++materials;
+    it.moveNext();
+  }
+  c.materials = materials;
+  return c;
+}
+
+std::size_t residentBytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  std::size_t pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * 4096;
+}
+
+bool underAddressSanitizer()
+{
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return true;
+#else
+  return false;
+#endif
+#else
+  return false;
+#endif
+}
+
+std::string loadRvizFile(rviz::VisualizationManager* manager, const QString& file)
+{
+  rviz::Config config;
+  rviz::YamlConfigReader reader;
+  reader.readFile(config, file);
+  if (reader.error())
+  {
+    return reader.errorMessage().toStdString();
+  }
+  manager->load(config.mapGetChild("Visualization Manager"));
+  return std::string();
+}
+
+std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager, const QString& class_id)
+{
+  std::vector<rviz::Display*> found;
+  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    if (group->getDisplayAt(i)->getClassId() == class_id)
+    {
+      found.push_back(group->getDisplayAt(i));
+    }
+  }
+  return found;
+}
+
+QString configFile(const char* name)
+{
+  return QString(RVIZ_PROJECTOR_TEST_CONFIGS) + "/" + name;
+}
+}  // namespace rviz_projector_test

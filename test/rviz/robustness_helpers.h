@@ -1,0 +1,86 @@
+// Helpers of the robustness rostests (test/rviz/robustness_test.cpp): messages with bad values,
+// projector mounts, window and Ogre object counts, config loading.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <QImage>
+#include <QString>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Path.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "rviz_projector/core/vec3.h"
+
+namespace Ogre
+{
+class SceneManager;
+}
+namespace rviz
+{
+class Display;
+class VisualizationManager;
+}  // namespace rviz
+namespace rviz_projector
+{
+class ProjectorCameraDisplay;
+}
+
+namespace rviz_projector_test
+{
+/// Poses at `points` in `frame`, every orientation (qx, qy, qz, qw) as given (not normalised).
+nav_msgs::Path makePath(const std::string& frame, const std::vector<rviz_projector::Vec3>& points, double qx = 0.0,
+                        double qy = 0.0, double qz = 0.0, double qw = 1.0);
+/// `n` >= 2 evenly spaced points from `from` to `to`.
+std::vector<rviz_projector::Vec3> line(const rviz_projector::Vec3& from, const rviz_projector::Vec3& to, std::size_t n);
+/// Arrows PathSpacer's Exact mode puts on a straight path of `length` with the display's default
+/// sizes (spacing 0.25, shaft 0.10 + head 0.08, circle 0.20, gap 0.05).
+std::size_t defaultExactArrows(double length);
+
+/// A valid CameraInfo: w x h, focal f, principal point (cx, cy), no distortion.
+sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy);
+/// Optical frame of a projector body at (x, y, z) (x forward, z up) pitched down by `pitch`.
+geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
+                                               double y, double z, double pitch);
+
+/// ProjectorOutputWindows that exist (`visible_only`: that are shown).
+int projectorWindows(bool visible_only);
+/// Pixels within `tolerance` of `colour`.
+int countColour(const QImage& image, QRgb colour, int tolerance = 30);
+/// Renders the projector view now and reads its window back from the X server (what it shows),
+/// letterbox removed.
+QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector);
+
+/// Ogre objects a display creates: compared before and after add/remove cycles.
+struct OgreCounts
+{
+  std::size_t manual_objects = 0;
+  std::size_t cameras = 0;
+  std::size_t scene_nodes = 0;
+  std::size_t render_targets = 0;
+  std::size_t materials = 0;
+  std::string describe() const;
+  bool operator==(const OgreCounts& o) const
+  {
+    return manual_objects == o.manual_objects && cameras == o.cameras && scene_nodes == o.scene_nodes &&
+           render_targets == o.render_targets && materials == o.materials;
+  }
+};
+OgreCounts ogreCounts(Ogre::SceneManager* scene_manager);
+
+/// Resident memory of this process, bytes.
+std::size_t residentBytes();
+/// True when built with AddressSanitizer (its quarantine makes memory numbers meaningless).
+bool underAddressSanitizer();
+
+/// Reads a .rviz file and loads its "Visualization Manager" section, as rviz -d does. Returns
+/// an empty string or the reader's error.
+std::string loadRvizFile(rviz::VisualizationManager* manager, const QString& file);
+/// Displays of the root group with this class id, in order.
+std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager, const QString& class_id);
+/// Path of a file in test/rviz/configs.
+QString configFile(const char* name);
+}  // namespace rviz_projector_test
