@@ -15,8 +15,14 @@ if(benchmark_FOUND)
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro)
-  target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${PROJECT_NAME}_core ${catkin_LIBRARIES}
-    benchmark::benchmark)
+  # pathToFloorPoints (ros_conversions) is in the ROS conversion library where there is one, and
+  # FloorMesh in the rviz plugin library.
+  set(_rp_bench_ros_library)
+  if(TARGET ${PROJECT_NAME}_ros)
+    set(_rp_bench_ros_library ${PROJECT_NAME}_ros)
+  endif()
+  target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${_rp_bench_ros_library} ${PROJECT_NAME}_core
+    ${catkin_LIBRARIES} benchmark::benchmark)
   target_compile_options(${PROJECT_NAME}_microbench PRIVATE ${${PROJECT_NAME}_WARNINGS})
   add_dependencies(${PROJECT_NAME}_microbench ${catkin_EXPORTED_TARGETS})
 else()

@@ -152,7 +152,8 @@ def main():
                 if all(c is None for c in cells):
                     continue
                 ratio = ""
-                if cells[0] and cells[1] and cells[1][1] > 0 and "timeout" not in metric:
+                comparable = metric not in ("cpu.others", "cpu.steal", "cpu.probe") and "timeout" not in metric
+                if comparable and cells[0] and cells[1] and cells[1][1] > 0:
                     ratio = "%.2f" % (cells[0][1] / cells[1][1])
                 n = "/".join(sorted({str(c[3]) for c in cells if c}))
                 rows.append((label, cell(cells[0], fmt), cell(cells[1], fmt), ratio, n))
