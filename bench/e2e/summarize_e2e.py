@@ -142,7 +142,15 @@ def main():
     for title, ours, baseline in groups_of(PIPELINES):
         print()
         print("=" * 100)
-        print(title + ("" if ours and baseline else ""))
+        print(title)
+        for p in (ours, baseline):
+            geometry = [get(p, "setup", "watched_" + k) for k in ("width", "height", "x", "y")]
+            if p and None not in geometry:
+                print("  %s: output watched at %dx%d+%d+%d of the X screen" % ((p,) + tuple(int(g[1]) for g in geometry)))
+            on_top = get(p, "setup", "window_on_top_at_end")
+            if on_top is not None and on_top[1] < 1:
+                warnings.append("%s: its output window was not on top at the end: pixels of another window "
+                                "may have been counted" % p)
         print("=" * 100)
         rows = []
         for section, phase, metrics in SECTIONS:
@@ -176,6 +184,14 @@ def main():
             if values and max(values) > 0.15:
                 warnings.append("%s: %s up to %.2f cores during the trials (median of a phase)" % (
                     title, what, max(values)))
+    print()
+    print("Notes: frames/s = content changes of the watched rectangle per second (XDamage-triggered "
+          "MIT-SHM grabs compared pixel by pixel);")
+    print("  a driving trial reads 0 while the robot stands at a goal (its plan then ends under it: the "
+          "projector shows black). draws/s = drawing")
+    print("  operations reaching the rectangle, changed or not. Latency: robot stopped, a 45-pose (or "
+          "100,000-pose) path published in base_link,")
+    print("  timed from just before publish() to the damage event of the first changed grab.")
     if warnings:
         print()
         print("WARNING: the machine was not idle, figures are pessimistic:")
