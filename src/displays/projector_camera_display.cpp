@@ -9,6 +9,7 @@
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 #include <OgreViewport.h>
+#include <QCoreApplication>
 #include <QGuiApplication>
 #include <QScreen>
 #include <QWidget>
@@ -123,10 +124,15 @@ ProjectorCameraDisplay::ProjectorCameraDisplay()
       this, SLOT(updateFrameRate()), this);
   frame_rate_property_->setMin(1);
   frame_rate_property_->setMax(240);
+  anti_aliasing_property_ = new rviz::BoolProperty(
+      "Anti-aliasing", false,
+      "Smooth edges with 4x multisampling. Off by default: projected arrows are solid shapes, and on "
+      "software or integrated graphics multisampling costs most of the frame time.",
+      this, SLOT(updateOutput()), this);
   footprint_property_ = new rviz::BoolProperty(
       "Footprint in main view", true,
       "Draw the projector's frustum and the area it lights on the floor (z = 0) in rviz's main view.", this,
-      SLOT(updateFootprintVisible()), this);
+      SLOT(onFootprintPropertyChanged()), this);
   test_pattern_property_ = new rviz::BoolProperty(
       "Test pattern", false,
       "Project a metric grid on the floor: 10 cm cells, bold lines every metre, a cross at the fixed "
@@ -535,9 +541,9 @@ void ProjectorCameraDisplay::createWindow()
 {
   const bool single_screen = QGuiApplication::screens().size() < 2;
   const bool full_screen = full_screen_property_->getBool() && !single_screen;
-  window_ = std::make_unique<ProjectorOutputWindow>("Projector: " + getName(), full_screen);
+  window_ = std::make_unique<ProjectorOutputWindow>("Projector: " + getName(), full_screen,
+                                                    anti_aliasing_property_->getBool() ? 4 : 0);
   Ogre::RenderWindow* render_window = window_->renderWindow();
-  render_window->setAutoUpdated(false);  // rendered by our own timer, not at rviz's frame rate
   render_window->addListener(this);
   viewport_ = render_window->addViewport(camera_);
   viewport_->setOverlaysEnabled(false);
@@ -546,6 +552,7 @@ void ProjectorCameraDisplay::createWindow()
   viewport_->setClearEveryFrame(true);
   viewport_->setBackgroundColour(background_property_->getOgreColor());
   viewport_->setVisibilityMask(vis_bit_);
+  have_last_frame_ = false;  // a new window has nothing in it yet
   connect(window_.get(), SIGNAL(leaveFullScreenRequested()), this, SLOT(onLeaveFullScreenRequested()));
   connect(window_.get(), SIGNAL(closedByUser()), this, SLOT(onWindowClosed()));
 }
@@ -589,7 +596,8 @@ void ProjectorCameraDisplay::updateOutput()
   QScreen* screen = chooseScreen(why);
   const bool single_screen = QGuiApplication::screens().size() < 2;
   const bool want_full_screen = full_screen_property_->getBool() && !single_screen;
-  if (want_full_screen != window_->isFullScreenOn())
+  if (want_full_screen != window_->isFullScreenOn() ||
+      window_->fsaa() != (anti_aliasing_property_->getBool() ? 4 : 0))
   {
     destroyWindow();
     createWindow();
@@ -923,7 +931,10 @@ void ProjectorCameraDisplay::renderNow()
   }
   // rviz handles ROS callbacks (new paths, CameraInfo) only at its main view's frame rate; the
   // projector must not wait for that. Same thread as rviz's own spinOnce(), so this is safe.
+  // Message-filter displays hand a message over through a queued Qt call (after their tf filter
+  // passed it): deliver those too, so a new path is drawn in this frame, not the next.
   ros::spinOnce();
+  QCoreApplication::sendPostedEvents(nullptr, QEvent::MetaCall);
   if (!prepareFrame())
   {
     return;

@@ -10,8 +10,10 @@
 
 namespace rviz_projector
 {
-ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_screen)
-  : QWidget(nullptr, full_screen ? Qt::Window | Qt::FramelessWindowHint : Qt::Window), full_screen_(full_screen)
+ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_screen, int fsaa)
+  : QWidget(nullptr, full_screen ? Qt::Window | Qt::FramelessWindowHint : Qt::Window)
+  , full_screen_(full_screen)
+  , fsaa_(fsaa)
 {
   setWindowTitle(title);
   setAttribute(Qt::WA_DeleteOnClose, false);
@@ -22,7 +24,7 @@ ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_scr
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(0);
-  render_widget_ = new ProjectorRenderWidget(this);
+  render_widget_ = new ProjectorRenderWidget(this, fsaa);
   layout->addWidget(render_widget_);
 }
 
@@ -30,7 +32,7 @@ ProjectorOutputWindow::~ProjectorOutputWindow() = default;
 
 Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
 {
-  return render_widget_->getRenderWindow();
+  return render_widget_->renderWindow();
 }
 
 void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size, bool corner)

@@ -894,3 +894,16 @@ TEST_F(ProjectorCameraTest, EscapeLeavesFullScreen)
   EXPECT_EQ(projector_->subProp("Full screen")->getValue().toBool(), false);
   EXPECT_EQ(visibleProjectorWindows(), 1);
 }
+
+TEST_F(ProjectorSceneTest, AntiAliasingIsOffByDefaultAndCanBeTurnedOn)
+{
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  EXPECT_EQ(projector_->outputWindow()->fsaa(), 0);
+  EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100);
+  projector_->subProp("Anti-aliasing")->setValue(true);
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->fsaa() == 4; }));
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow()->isVisible(); }));
+  spinFor(0.2);
+  EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100) << "renders with multisampling too";
+  EXPECT_EQ(visibleProjectorWindows(), 1);
+}

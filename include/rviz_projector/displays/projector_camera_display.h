@@ -147,6 +147,7 @@ private:
   rviz::FloatProperty* near_clip_property_;
   rviz::FloatProperty* far_clip_property_;
   rviz::IntProperty* frame_rate_property_;
+  rviz::BoolProperty* anti_aliasing_property_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
   rviz::BoolProperty* footprint_property_;
   rviz::BoolProperty* test_pattern_property_;

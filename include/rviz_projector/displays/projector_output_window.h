@@ -22,7 +22,8 @@ public:
   /// Full screen windows are frameless; a windowed one has a normal frame so it can be resized.
   /// The choice is made at construction (changing flags later would recreate the native window
   /// under the OGRE render window), so the display builds a new window when it toggles.
-  ProjectorOutputWindow(const QString& title, bool full_screen);
+  /// `fsaa`: multisampling samples of the render window (0 = off).
+  ProjectorOutputWindow(const QString& title, bool full_screen, int fsaa);
   ~ProjectorOutputWindow() override;
 
   Ogre::RenderWindow* renderWindow() const;
@@ -35,6 +36,7 @@ public:
    */
   void present(QScreen* screen, const QSize& image_size, bool corner = false);
   bool isFullScreenOn() const { return full_screen_; }
+  int fsaa() const { return fsaa_; }
 
 Q_SIGNALS:
   /// The user pressed Esc in full screen.
@@ -49,5 +51,6 @@ protected:
 private:
   ProjectorRenderWidget* render_widget_;
   bool full_screen_ = false;
+  int fsaa_ = 0;
 };
 }  // namespace rviz_projector

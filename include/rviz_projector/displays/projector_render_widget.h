@@ -1,16 +1,35 @@
-// rviz's RenderWidget with a complete teardown: its render window is detached from OGRE's root
-// and destroyed, so rviz never renders into a window that is gone (removing camera-like displays
-// is where rviz plugins historically crash).
+// The OGRE render window inside the projector's output window. Like rviz's RenderWidget, but with
+// its own multisampling setting (rviz gives every window 4x FSAA, which on software or integrated
+// GL costs most of a frame and buys nothing on a projected floor) and a complete teardown: the
+// render window is detached from OGRE's root and destroyed, so rviz never renders into a window
+// that is gone (removing camera-like displays is where rviz plugins historically crash).
 #pragma once
 
-#include <rviz/ogre_helpers/render_widget.h>
+#include <QWidget>
+
+namespace Ogre
+{
+class RenderWindow;
+}
 
 namespace rviz_projector
 {
-class ProjectorRenderWidget : public rviz::RenderWidget
+class ProjectorRenderWidget : public QWidget
 {
 public:
-  explicit ProjectorRenderWidget(QWidget* parent);
+  /// `fsaa`: multisampling samples (0 = off).
+  ProjectorRenderWidget(QWidget* parent, int fsaa);
   ~ProjectorRenderWidget() override;
+
+  Ogre::RenderWindow* renderWindow() const { return render_window_; }
+
+protected:
+  void moveEvent(QMoveEvent* event) override;
+  void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+  QPaintEngine* paintEngine() const override { return nullptr; }
+
+private:
+  Ogre::RenderWindow* render_window_ = nullptr;
 };
 }  // namespace rviz_projector
