@@ -3,6 +3,7 @@
 #include "rviz_projector/core/arrow_outline.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 
 namespace rviz_projector
@@ -21,41 +22,39 @@ double finiteAtLeast(double value, double minimum, double fallback)
 /**
  * Walks a polyline from its last point towards its first and returns the point at a given arc
  * length from the last point. Arc lengths asked for must not decrease between calls, which keeps
- * the whole walk linear. Lengths are accumulated from the last point, so the same tail of a path
- * always yields bit-identical points.
+ * the whole walk linear. It reads the arc lengths accumulated from the last point (`from_end`), so
+ * the same tail of a path always yields bit-identical points.
  */
 class BackwardWalker
 {
 public:
-  explicit BackwardWalker(const std::vector<Vec2>& points)
-    : points_(points), segment_(points.size() >= 2 ? points.size() - 2 : 0)
+  BackwardWalker(const std::vector<Vec2>& points, const std::vector<double>& from_end)
+    : points_(points), from_end_(from_end), segment_(points.size() >= 2 ? points.size() - 2 : 0)
   {
   }
 
   Vec2 pointAt(double arc_length)
   {
-    double length = segmentLength();
-    while (segment_ > 0 && arc_length > start_ + length)
+    // Segment j runs from points_[j + 1] (from_end_[j + 1] from the end) to points_[j].
+    while (segment_ > 0 && arc_length > from_end_[segment_])
     {
-      start_ += length;
       --segment_;
-      length = segmentLength();
     }
     const Vec2& near_end = points_[segment_ + 1];
+    const double start = from_end_[segment_ + 1];
+    const double length = from_end_[segment_] - start;
     if (length <= 0.0)
     {
       return near_end;
     }
-    const double fraction = std::min(1.0, std::max(0.0, (arc_length - start_) / length));
+    const double fraction = std::min(1.0, std::max(0.0, (arc_length - start) / length));
     return near_end + (points_[segment_] - near_end) * fraction;
   }
 
 private:
-  double segmentLength() const { return distance(points_[segment_], points_[segment_ + 1]); }
-
   const std::vector<Vec2>& points_;
-  std::size_t segment_;  // segment between points_[segment_] and points_[segment_ + 1]
-  double start_ = 0.0;   // arc length from the last point to points_[segment_ + 1]
+  const std::vector<double>& from_end_;
+  std::size_t segment_;
 };
 }  // namespace
 
@@ -90,26 +89,33 @@ const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path)
   result_.truncated = false;
   result_.path_length = 0.0;
 
-  points_.clear();
-  points_.reserve(path.size());
-  for (const Vec2& p : path)
+  // Usually every point is finite: then the input is used as it is, without a copy.
+  points_in_use_ = &path;
+  result_.dropped_points = 0;
+  if (!std::all_of(path.begin(), path.end(), [](const Vec2& p) { return isFinite(p); }))
   {
-    if (isFinite(p))
-    {
-      points_.push_back(p);
-    }
+    points_.clear();
+    points_.reserve(path.size());
+    std::copy_if(path.begin(), path.end(), std::back_inserter(points_), [](const Vec2& p) { return isFinite(p); });
+    result_.dropped_points = path.size() - points_.size();
+    points_in_use_ = &points_;
   }
-  result_.dropped_points = path.size() - points_.size();
-  if (points_.empty())
+  const std::vector<Vec2>& points = *points_in_use_;
+  if (points.empty())
   {
     return result_;
   }
   result_.has_destination = true;
-  result_.destination = points_.back();
-  for (std::size_t i = points_.size() - 1; i > 0; --i)
+  result_.destination = points.back();
+  // Arc length from the destination back to each point, accumulated from the destination so that
+  // a trimmed start leaves the rest bit-identical.
+  from_end_.resize(points.size());
+  from_end_.back() = 0.0;
+  for (std::size_t i = points.size() - 1; i > 0; --i)
   {
-    result_.path_length += distance(points_[i], points_[i - 1]);
+    from_end_[i - 1] = from_end_[i] + distance(points[i], points[i - 1]);
   }
+  result_.path_length = from_end_.front();
 
   if (parameters_.mode == SpacingMode::Paper)
   {
@@ -128,7 +134,8 @@ void PathSpacer::placeExact()
   const double first_tip = radius + parameters_.destination_gap;
   const double arrow_length = parameters_.arrow.length();
   const double total = result_.path_length;
-  if (points_.size() < 2 || first_tip + arrow_length > total)
+  const std::vector<Vec2>& points = *points_in_use_;
+  if (points.size() < 2 || first_tip + arrow_length > total)
   {
     return;
   }
@@ -147,8 +154,8 @@ void PathSpacer::placeExact()
 
   // Tips and tails each have their own walker: both sequences grow, but a tail may lie beyond the
   // next tip (arrow longer than the spacing), so one shared walker could not stay monotonic.
-  BackwardWalker tips(points_);
-  BackwardWalker tails(points_);
+  BackwardWalker tips(points, from_end_);
+  BackwardWalker tails(points, from_end_);
   std::size_t placed = 0;
   for (std::size_t k = 0; k < count; ++k)
   {
@@ -175,15 +182,16 @@ void PathSpacer::placePaper()
   kept_.clear();
   const double d_min = parameters_.spacing;
   const double d_destination = parameters_.spacing + parameters_.circle_diameter;
-  const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(points_.size()) - 1;
+  const std::vector<Vec2>& points = *points_in_use_;
+  const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(points.size()) - 1;
   std::ptrdiff_t current = last;
   do
   {
-    const Vec2 p = points_[static_cast<std::size_t>(current)];
+    const Vec2 p = points[static_cast<std::size_t>(current)];
     kept_.push_back(p);
     const double needed = current == last ? d_destination : d_min;
     std::ptrdiff_t previous = current - 1;
-    while (previous >= 0 && distance(p, points_[static_cast<std::size_t>(previous)]) < needed)
+    while (previous >= 0 && distance(p, points[static_cast<std::size_t>(previous)]) < needed)
     {
       --previous;
     }

@@ -42,7 +42,9 @@ private:
   void placePaper();
 
   SpacingParameters parameters_;
-  std::vector<Vec2> points_;  // finite input points
+  std::vector<Vec2> points_;                            // finite input points, when some were not
+  const std::vector<Vec2>* points_in_use_ = &points_;   // during space(): the input, or points_
+  std::vector<double> from_end_;                        // arc length from the destination to each point
   std::vector<Vec2> kept_;    // Paper mode scratch
   SpacedPath result_;
 };

@@ -15,7 +15,8 @@ inline Vec2 operator+(const Vec2& a, const Vec2& b) { return {a.x + b.x, a.y + b
 inline Vec2 operator-(const Vec2& a, const Vec2& b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(const Vec2& a, double s) { return {a.x * s, a.y * s}; }
 inline double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
-inline double norm(const Vec2& a) { return std::hypot(a.x, a.y); }
+/// sqrt, not std::hypot: several times faster, and floor coordinates never come near overflow.
+inline double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double distance(const Vec2& a, const Vec2& b) { return norm(a - b); }
 inline bool isFinite(const Vec2& a) { return std::isfinite(a.x) && std::isfinite(a.y); }
 /// Left-hand perpendicular (rotated +90 degrees).
