@@ -2,7 +2,8 @@
 // (NaN/Inf/huge/denormal values included). Invariants: no crash or UB (ASan/UBSan), at most
 // max_arrows arrows, NaN/Inf points dropped and counted, the destination is the last finite point,
 // finite arrows inside the path's bounding box for sane inputs, Exact arrows no longer than an
-// arrow, Paper arrows join input points, and the same result when the instance is reused.
+// arrow, Paper arrows join input points, Exact arrows unchanged when the start of the path is
+// trimmed, and the same result when the instance is reused.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -182,6 +183,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (p.mode == SpacingMode::Paper && !r.arrows.empty())
     {
       RP_FUZZ_CHECK(r.arrows.front().tip.x == r.destination.x && r.arrows.front().tip.y == r.destination.y);
+    }
+  }
+
+  // Exact mode is anchored at the destination: trimming the start of the path (the robot driving
+  // along its plan) leaves every remaining arrow bit-for-bit where it was (path_spacer.h).
+  if (p.mode == SpacingMode::Exact && all_sane && r.dropped_points == 0 && path.size() >= 3 && !r.truncated)
+  {
+    const SpacedPath full = r;
+    const std::vector<Vec2> trimmed(path.begin() + 1, path.end());
+    PathSpacer other(requested);
+    const SpacedPath& t = other.space(trimmed);
+    RP_FUZZ_CHECK(t.arrows.size() <= full.arrows.size());
+    for (std::size_t k = 0; k < t.arrows.size(); ++k)
+    {
+      RP_FUZZ_CHECK(t.arrows[k].tip.x == full.arrows[k].tip.x && t.arrows[k].tip.y == full.arrows[k].tip.y);
+      RP_FUZZ_CHECK(t.arrows[k].tail.x == full.arrows[k].tail.x && t.arrows[k].tail.y == full.arrows[k].tail.y);
     }
   }
 
