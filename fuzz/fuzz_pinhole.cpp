@@ -118,9 +118,7 @@ void fuzzOne(Input& in)
     RP_FUZZ_CHECK(check.error.find_first_not_of(' ') != std::string::npos);
     return;
   }
-  // Known bug 2: fromCalibration checks fx, fy > 0 before dividing by the binning, so a tiny (e.g.
-  // denormal) focal length binned by a large factor is accepted as exactly 0 (rays become Inf/NaN).
-  RP_FUZZ_SKIP_KNOWN_BUG(!(lens.fx() > 0.0) || !(lens.fy() > 0.0));
+  RP_FUZZ_CHECK(lens.fx() >= PinholeModel::kMinFocalLength && lens.fy() >= PinholeModel::kMinFocalLength);
   RP_FUZZ_CHECK(lens.width() >= 1 && lens.width() <= PinholeModel::kMaxResolution);
   RP_FUZZ_CHECK(lens.height() >= 1 && lens.height() <= PinholeModel::kMaxResolution);
   RP_FUZZ_CHECK(std::isfinite(lens.fx()) && lens.fx() > 0.0);

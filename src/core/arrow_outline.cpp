@@ -34,7 +34,7 @@ ArrowOutline::ArrowOutline(const Arrow& arrow, const ArrowDimensions& dimensions
     return;
   }
   valid_ = true;
-  const Vec2 forward = along * (1.0 / length);
+  const Vec2 forward{along.x / length, along.y / length};  // (1 / length is Inf for a denormal length)
   const Vec2 left = perpendicular(forward);
   const double head_length = std::min(std::max(dimensions.head_length, 0.0), length);
   const Vec2 neck = arrow.tip - forward * head_length;

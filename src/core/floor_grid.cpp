@@ -16,6 +16,14 @@ void appendRectangle(const Vec2& a, const Vec2& b, std::vector<Vec2>& out)
 /// Index range of grid lines k * cell within [lo, hi], bounded to kMaxLines lines.
 void lineRange(double lo, double hi, double cell, long& first, long& last)
 {
+  // Line indices must fit a long; a grid that far from the origin (1e15 cells) draws no lines.
+  constexpr double kMaxIndex = 1e15;
+  if (!(std::abs(lo / cell) <= kMaxIndex) || !(std::abs(hi / cell) <= kMaxIndex))
+  {
+    first = 1;
+    last = 0;
+    return;
+  }
   first = static_cast<long>(std::ceil(lo / cell));
   last = static_cast<long>(std::floor(hi / cell));
   last = std::min(last, first + FloorGrid::kMaxLines - 1);

@@ -120,6 +120,13 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
   // Binning scales pixel coordinates: u_binned = (u + 0.5) / b - 0.5 keeps pixel centres consistent.
   fx /= bx;
   fy /= by;
+  if (!(fx >= kMinFocalLength) || !(fy >= kMinFocalLength))
+  {
+    error << "focal length is below " << kMinFocalLength << " pixels" << (bx > 1 || by > 1 ? " after binning" : "")
+          << " (fx = " << fx << ", fy = " << fy << ")";
+    check.error = error.str();
+    return check;
+  }
   tx /= bx;
   ty /= by;
   cx = (cx + 0.5) / bx - 0.5;

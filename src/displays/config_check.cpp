@@ -20,7 +20,8 @@ void ConfigCheck::number(const rviz::Config& value, rviz::Property* property)
   const double tolerance = 1e-5 * std::max(1.0, std::abs(used));
   if (!ok || !std::isfinite(wanted) || std::abs(wanted - used) > tolerance)
   {
-    problems_ << QString("%1: '%2' -> %3").arg(property->getName(), text, property->getValue().toString());
+    // Floats print with 6 significant digits ("0.01", not "0.009999999776482582").
+    problems_ << QString("%1: '%2' -> %3").arg(property->getName(), text, QString::number(used, 'g', 6));
   }
 }
 

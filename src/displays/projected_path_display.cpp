@@ -148,6 +148,7 @@ void ProjectedPathDisplay::reset()
   }
   MFDClass::reset();
   have_path_ = false;
+  last_msg_.reset();
   floor_points_.clear();
   dropped_poses_ = 0;
   spaced_ = &empty_;
@@ -158,6 +159,12 @@ void ProjectedPathDisplay::reset()
     ProjectionChangeCounter::bump();
   }
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
+  // rviz's Reset: subscribe again, so that a latched plan comes back by itself.
+  if (isEnabled() && sub_.getSubscriber())
+  {
+    unsubscribe();
+    subscribe();
+  }
 }
 
 void ProjectedPathDisplay::load(const rviz::Config& config)
@@ -196,8 +203,24 @@ SpacingParameters ProjectedPathDisplay::spacingParameters() const
   return p;
 }
 
+void ProjectedPathDisplay::fixedFrameChanged()
+{
+  const nav_msgs::Path::ConstPtr last = last_msg_;
+  MFDClass::fixedFrameChanged();  // retargets the tf filter and resets the display
+  if (last)
+  {
+    // Through the tf filter again: drawn as soon as the new fixed frame can be reached.
+    tf_filter_->add(last);
+  }
+}
+
 void ProjectedPathDisplay::checkFrame(const nav_msgs::Path::ConstPtr& msg)
 {
+  if (msg->header.frame_id.empty())
+  {
+    setStatus(rviz::StatusProperty::Error, "Transform", "Path has an empty frame_id: nothing is drawn");
+    return;
+  }
   std::string error;
   if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
   {
@@ -224,6 +247,7 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
   dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);
   have_path_ = true;
+  last_msg_ = msg;
   rebuild();
 }
 

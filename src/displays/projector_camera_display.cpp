@@ -274,8 +274,15 @@ void ProjectorCameraDisplay::reset()
   Display::reset();
   last_info_.reset();
   has_lens_ = false;
+  markChanged();
   setStatus(rviz::StatusProperty::Warn, "CameraInfo",
             QString("No CameraInfo received on %1").arg(topic_property_->getTopic()));
+  // A projector's CameraInfo is usually published once, latched: subscribe again to get it back.
+  if (isEnabled() && info_sub_)
+  {
+    unsubscribe();
+    subscribe();
+  }
 }
 
 void ProjectorCameraDisplay::load(const rviz::Config& config)
@@ -289,6 +296,14 @@ void ProjectorCameraDisplay::load(const rviz::Config& config)
   }
   check.number(config.mapGetChild(image_output_property_->getName()).mapGetChild(image_rate_property_->getName()),
                image_rate_property_);
+  // An output screen that is not connected is said at once, even while the display is disabled
+  // (placing the window, when enabled, keeps the status up to date).
+  QString why;
+  chooseScreen(why);
+  if (!why.isEmpty() && !isEnabled())
+  {
+    setStatus(rviz::StatusProperty::Warn, "Output", why);
+  }
   if (check.report().isEmpty())
   {
     deleteStatus("Config");

@@ -1,10 +1,8 @@
 // Regressions found by the fuzz targets in fuzz/ (and by the robustness matrix): each test is the
 // smallest input that broke an invariant, written as the behaviour the core must have.
 //
-// Tests named DISABLED_ pin a bug of src/ that is reported and not fixed yet: they would fail
-// (or, under scripts/test --sanitize, abort on UBSan) today. Drop the prefix with the fix, and
-// delete the matching RP_FUZZ_SKIP_KNOWN_BUG skip in fuzz/. Run them anyway with
-//   test_core_regression --gtest_also_run_disabled_tests
+// A bug found and not fixed yet would be pinned by a DISABLED_ test (and an RP_FUZZ_SKIP_KNOWN_BUG
+// in fuzz/); the three found so far are fixed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,13 +37,13 @@ bool allFinite(const std::vector<Vec2>& points)
 }
 }  // namespace
 
-// Known bug 1 (fuzz_shapes): floor_grid.cpp lineRange() casts lo / cell and hi / cell to long
+// Fixed bug 1 (found by fuzz_shapes): floor_grid.cpp lineRange() casts lo / cell and hi / cell to long
 // unchecked; a grid far from the origin (a tf pose of 1e20 m reaches it through the projector's
 // test pattern) is undefined behaviour (clang UBSan: "1.55899e+296 is outside the range of
 // representable values of type 'long'"; gcc's -fsanitize=undefined does not check this). On
 // x86 the cast gives LONG_MIN: one line at x = -9.2e17 m. Expected: such a grid draws nothing
 // (or only lines within its rectangle).
-TEST(CoreRegression, DISABLED_FloorGridFarFromTheOriginIsEmptyNotUndefined)
+TEST(CoreRegression, FloorGridFarFromTheOriginIsEmptyNotUndefined)
 {
   const Vec2 min{1e20, 1e20}, max{1.000001e20, 1.000001e20};  // 1e14 m wide: distinct doubles
   const FloorGrid grid(min, max, 0.1);
@@ -65,11 +63,11 @@ TEST(CoreRegression, DISABLED_FloorGridFarFromTheOriginIsEmptyNotUndefined)
   EXPECT_LE(huge.verticalLineCount(), FloorGrid::kMaxLines);
 }
 
-// Known bug 2 (fuzz_pinhole): pinhole_model.cpp checks fx, fy > 0 before the binning divides
+// Fixed bug 2 (found by fuzz_pinhole): pinhole_model.cpp checks fx, fy > 0 before the binning divides
 // them; a tiny focal length binned by a large factor is accepted as exactly 0 and ray() divides
 // by it. Crash input: K = {denorm_min, 0, -487.6, 0, denorm_min, -1779.7, 0, 0, 1}, P all zero,
 // binning 1852730990 x 1852730990, 2864706413 x 2443764736 pixels.
-TEST(CoreRegression, DISABLED_TinyFocalLengthIsRefusedBeforeAndAfterBinning)
+TEST(CoreRegression, TinyFocalLengthIsRefusedBeforeAndAfterBinning)
 {
   LensCalibration c;
   c.width = 2864706413u;
@@ -87,9 +85,9 @@ TEST(CoreRegression, DISABLED_TinyFocalLengthIsRefusedBeforeAndAfterBinning)
   EXPECT_FALSE(PinholeModel::fromCalibration(tiny, lens).ok());
 }
 
-// Known bug 3 (fuzz_shapes): arrow_outline.cpp normalises the direction as along * (1 / length);
+// Fixed bug 3 (found by fuzz_shapes): arrow_outline.cpp normalises the direction as along * (1 / length);
 // for a denormal length the reciprocal is Inf and a valid() arrow gets NaN corners.
-TEST(CoreRegression, DISABLED_ArrowOutlineOfADenormalLengthHasFiniteCorners)
+TEST(CoreRegression, ArrowOutlineOfADenormalLengthHasFiniteCorners)
 {
   const ArrowOutline outline(Arrow{Vec2{0.0, 0.0}, Vec2{kDenormal, 0.0}}, ArrowDimensions());
   if (outline.valid())

@@ -359,3 +359,15 @@ Displays:
   ASSERT_NE(path, nullptr);
   EXPECT_TRUE(waitFor([&] { return !path->spacedPath().arrows.empty(); }));
 }
+
+TEST_F(ProjectedPathTest, FixedFrameChangeRedrawsTheLastPath)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  rviz_->manager()->setFixedFrame("odom");
+  // Redrawn from the last message, now in odom (where the path is a straight line along +x).
+  ASSERT_TRUE(waitFor([&] { return display_->spacedPath().has_destination; }))
+      << statusOf(display_, "Path").text.toStdString() << " / " << statusOf(display_, "Transform").text.toStdString();
+  EXPECT_NEAR(display_->spacedPath().destination.x, 3.05, 1e-6);
+  EXPECT_NEAR(display_->spacedPath().destination.y, 0.0, 1e-6);
+  EXPECT_EQ(display_->spacedPath().arrows.size(), 6u);
+}

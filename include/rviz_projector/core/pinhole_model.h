@@ -22,6 +22,8 @@ class PinholeModel
 public:
   /// Largest width or height accepted (beyond it no render target is allocated).
   static constexpr std::uint32_t kMaxResolution = 16384;
+  /// Smallest focal length accepted, pixels (smaller ones make rays and the projection blow up).
+  static constexpr double kMinFocalLength = 1e-3;
 
   PinholeModel() = default;
   PinholeModel(std::uint32_t width, std::uint32_t height, double fx, double fy, double cx, double cy,

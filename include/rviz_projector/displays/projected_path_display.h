@@ -50,6 +50,9 @@ protected:
   void onEnable() override;
   void onDisable() override;
   void processMessage(const nav_msgs::Path::ConstPtr& msg) override;
+  /// Draws the last path again in the new fixed frame, once tf can transform it (rviz's base class
+  /// would clear it until the planner publishes again, which a latched plan never does).
+  void fixedFrameChanged() override;
   /// Reports a path whose frame cannot be transformed (yet) to the fixed frame.
   void checkFrame(const nav_msgs::Path::ConstPtr& msg);
 
@@ -83,6 +86,7 @@ private:
   SpacedPath empty_;
   std::vector<Vec2> floor_points_;  // last path, in the fixed frame
   bool have_path_ = false;
+  nav_msgs::Path::ConstPtr last_msg_;
   std::size_t dropped_poses_ = 0;
   std::vector<Vec2> flat_buffer_;
   std::vector<MeshVertex> solid_buffer_;
