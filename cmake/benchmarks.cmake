@@ -9,19 +9,14 @@ if(benchmark_FOUND)
   #catkin_lint: ignore uninstalled_target
   add_executable(${PROJECT_NAME}_microbench
     bench/micro/bench_paths.cpp
-    bench/micro/micro_benchmarks.cpp
     bench/micro/mesh_benchmarks.cpp
+    bench/micro/micro_benchmarks.cpp
     bench/micro/reference_baseline.cpp
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro)
-  # pathToFloorPoints (ros_conversions) is in the ROS conversion library where there is one, and
-  # FloorMesh in the rviz plugin library.
-  set(_rp_bench_ros_library)
-  if(TARGET ${PROJECT_NAME}_ros)
-    set(_rp_bench_ros_library ${PROJECT_NAME}_ros)
-  endif()
-  target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${_rp_bench_ros_library} ${PROJECT_NAME}_core
+  # pathToFloorPoints is in the ROS conversion library, FloorMesh in the rviz plugin library.
+  target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${PROJECT_NAME}_ros ${PROJECT_NAME}_core
     ${catkin_LIBRARIES} benchmark::benchmark)
   target_compile_options(${PROJECT_NAME}_microbench PRIVATE ${${PROJECT_NAME}_WARNINGS})
   add_dependencies(${PROJECT_NAME}_microbench ${catkin_EXPORTED_TARGETS})
