@@ -37,6 +37,7 @@ using rviz_projector::ProjectorCameraDisplay;
 using rviz_projector::RigidTransform;
 using rviz_projector::Vec2;
 using rviz_projector::Vec3;
+using rviz_projector_test::countColour;
 using rviz_projector_test::Status;
 
 namespace
@@ -52,16 +53,7 @@ struct Mount
 
 sensor_msgs::CameraInfo cameraInfo(unsigned w, unsigned h, double f, double cx, double cy)
 {
-  sensor_msgs::CameraInfo info;
-  info.header.frame_id = kOpticalFrame;
-  info.width = w;
-  info.height = h;
-  info.distortion_model = "plumb_bob";
-  info.D = {0, 0, 0, 0, 0};
-  info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
-  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  info.P = {f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0};
-  return info;
+  return rviz_projector_test::cameraInfo(kOpticalFrame, w, h, f, cx, cy);
 }
 
 /// Quaternion (x, y, z, w) of roll-pitch-yaw about fixed x, y, z (as tf's setRPY).
@@ -384,18 +376,6 @@ int visibleProjectorWindows()
   return n;
 }
 
-int countColour(const QImage& image, QRgb colour)
-{
-  int n = 0;
-  for (int y = 0; y < image.height(); ++y)
-  {
-    for (int x = 0; x < image.width(); ++x)
-    {
-      n += rviz_projector_test::sameColour(image.pixel(x, y), colour, 30) ? 1 : 0;
-    }
-  }
-  return n;
-}
 
 QScreen* screenNamed(const QString& name)
 {

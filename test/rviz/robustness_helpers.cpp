@@ -75,20 +75,6 @@ std::size_t defaultExactArrows(double length)
   return static_cast<std::size_t>(std::floor((length - first_tip - arrow) / spacing + 1e-9)) + 1;
 }
 
-sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy)
-{
-  sensor_msgs::CameraInfo info;
-  info.header.frame_id = frame;
-  info.width = w;
-  info.height = h;
-  info.distortion_model = "plumb_bob";
-  info.D = {0, 0, 0, 0, 0};
-  info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
-  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  info.P = {f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0};
-  return info;
-}
-
 geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
                                                double y, double z, double pitch)
 {
@@ -122,19 +108,6 @@ int projectorWindows(bool visible_only)
     if (qobject_cast<rviz_projector::ProjectorOutputWindow*>(w) && (!visible_only || w->isVisible()))
     {
       ++n;
-    }
-  }
-  return n;
-}
-
-int countColour(const QImage& image, QRgb colour, int tolerance)
-{
-  int n = 0;
-  for (int y = 0; y < image.height(); ++y)
-  {
-    for (int x = 0; x < image.width(); ++x)
-    {
-      n += sameColour(image.pixel(x, y), colour, tolerance) ? 1 : 0;
     }
   }
   return n;

@@ -14,6 +14,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "rviz_projector/core/vec3.h"
+#include "rviz_test_fixture.h"  // cameraInfo(), countColour()
 
 namespace Ogre
 {
@@ -40,16 +41,12 @@ std::vector<rviz_projector::Vec3> line(const rviz_projector::Vec3& from, const r
 /// sizes (spacing 0.25, shaft 0.10 + head 0.08, circle 0.20, gap 0.05).
 std::size_t defaultExactArrows(double length);
 
-/// A valid CameraInfo: w x h, focal f, principal point (cx, cy), no distortion.
-sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy);
 /// Optical frame of a projector body at (x, y, z) (x forward, z up) pitched down by `pitch`.
 geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
                                                double y, double z, double pitch);
 
 /// ProjectorOutputWindows that exist (`visible_only`: that are shown).
 int projectorWindows(bool visible_only);
-/// Pixels within `tolerance` of `colour`.
-int countColour(const QImage& image, QRgb colour, int tolerance = 30);
 /// Renders the projector view now and reads its window back from the X server (what it shows),
 /// letterbox removed.
 QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector);

@@ -170,6 +170,33 @@ bool sameColour(QRgb a, QRgb b, int tolerance)
          std::abs(qBlue(a) - qBlue(b)) <= tolerance;
 }
 
+int countColour(const QImage& image, QRgb colour, int tolerance)
+{
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+  {
+    for (int x = 0; x < image.width(); ++x)
+    {
+      n += sameColour(image.pixel(x, y), colour, tolerance) ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy)
+{
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = frame;
+  info.width = w;
+  info.height = h;
+  info.distortion_model = "plumb_bob";
+  info.D = {0, 0, 0, 0, 0};
+  info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
 std::string describe(QRgb c)
 {
   return std::to_string(qRed(c)) + "," + std::to_string(qGreen(c)) + "," + std::to_string(qBlue(c));

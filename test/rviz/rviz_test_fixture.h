@@ -13,6 +13,7 @@
 #include <QString>
 #include <ros/ros.h>
 #include <rviz/properties/status_property.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 namespace rviz
@@ -79,6 +80,10 @@ protected:
 
 /// Whether two colours match within `tolerance` per channel (0..255).
 bool sameColour(QRgb a, QRgb b, int tolerance = 8);
+/// Pixels of `image` matching `colour` within `tolerance` per channel.
+int countColour(const QImage& image, QRgb colour, int tolerance = 30);
+/// CameraInfo of an ideal, centred-or-not pinhole lens (K and P consistent, no distortion).
+sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy);
 /// "r,g,b" for test messages.
 std::string describe(QRgb c);
 }  // namespace rviz_projector_test
