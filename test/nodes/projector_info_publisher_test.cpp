@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <ros/topic.h>
 #include <sensor_msgs/CameraInfo.h>
 
 #include <sys/wait.h>
@@ -61,22 +62,6 @@ std::string testFile(const std::string& name)
   return std::string(CALIBRATION_TEST_DIR) + "/" + name;
 }
 
-/// Waits for one message on a (latched) topic.
-sensor_msgs::CameraInfo::ConstPtr waitForInfo(const std::string& topic)
-{
-  ros::NodeHandle nh;
-  sensor_msgs::CameraInfo::ConstPtr received;
-  ros::Subscriber sub = nh.subscribe<sensor_msgs::CameraInfo>(
-      topic, 1, [&received](const sensor_msgs::CameraInfo::ConstPtr& msg) { received = msg; });
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(15.0);
-  while (!received && ros::ok() && ros::WallTime::now() < deadline)
-  {
-    ros::spinOnce();
-    ros::WallDuration(0.01).sleep();
-  }
-  return received;
-}
-
 void expectArray(const std::vector<double>& expected, const double* actual, const std::string& what)
 {
   for (std::size_t i = 0; i < expected.size(); ++i)
@@ -102,7 +87,8 @@ void expectFailure(const RunResult& result, const std::vector<std::string>& expe
 
 TEST(ProjectorInfoPublisher, PublishesGoodFileLatchedWithOpticalFrame)
 {
-  const sensor_msgs::CameraInfo::ConstPtr info = waitForInfo("/test_projector/camera_info");
+  const sensor_msgs::CameraInfo::ConstPtr info =
+      ros::topic::waitForMessage<sensor_msgs::CameraInfo>("/test_projector/camera_info", ros::Duration(15.0));
   ASSERT_TRUE(info != nullptr) << "no CameraInfo on /test_projector/camera_info";
   EXPECT_EQ("test_optical_frame", info->header.frame_id);
   EXPECT_FALSE(info->header.stamp.isZero());
@@ -119,7 +105,8 @@ TEST(ProjectorInfoPublisher, PublishesGoodFileLatchedWithOpticalFrame)
 TEST(ProjectorInfoPublisher, TopicParameterAndPackageUrl)
 {
   // The reference projector's file, found through package://, published on ~topic.
-  const sensor_msgs::CameraInfo::ConstPtr info = waitForInfo("/test_projector/pa503w_info");
+  const sensor_msgs::CameraInfo::ConstPtr info =
+      ros::topic::waitForMessage<sensor_msgs::CameraInfo>("/test_projector/pa503w_info", ros::Duration(15.0));
   ASSERT_TRUE(info != nullptr) << "no CameraInfo on /test_projector/pa503w_info";
   EXPECT_EQ("pa503w_optical_frame", info->header.frame_id);
   EXPECT_EQ(1280u, info->width);

@@ -6,6 +6,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <ros/topic.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/LinearMath/Transform.h>
@@ -57,20 +58,6 @@ void expectSameTransform(const tf2::Transform& expected, const tf2::Transform& a
   EXPECT_NEAR(0.0, expected.getRotation().angleShortestPath(actual.getRotation()), kTolerance) << what << " rotation";
 }
 
-sensor_msgs::CameraInfo::ConstPtr waitForInfo(const std::string& topic)
-{
-  ros::NodeHandle nh;
-  sensor_msgs::CameraInfo::ConstPtr received;
-  ros::Subscriber sub = nh.subscribe<sensor_msgs::CameraInfo>(
-      topic, 1, [&received](const sensor_msgs::CameraInfo::ConstPtr& msg) { received = msg; });
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(15.0);
-  while (!received && ros::ok() && ros::WallTime::now() < deadline)
-  {
-    ros::spinOnce();
-    ros::WallDuration(0.01).sleep();
-  }
-  return received;
-}
 }  // namespace
 
 TEST(ProjectorLaunch, DemoProjectorMount)
@@ -95,7 +82,8 @@ TEST(ProjectorLaunch, DemoProjectorMount)
 
 TEST(ProjectorLaunch, DemoProjectorCameraInfo)
 {
-  const sensor_msgs::CameraInfo::ConstPtr info = waitForInfo("/projector/camera_info");
+  const sensor_msgs::CameraInfo::ConstPtr info =
+      ros::topic::waitForMessage<sensor_msgs::CameraInfo>("/projector/camera_info", ros::Duration(15.0));
   ASSERT_TRUE(info != nullptr);
   EXPECT_EQ("projector_optical_frame", info->header.frame_id);
   EXPECT_EQ(1280u, info->width);
@@ -117,7 +105,8 @@ TEST(ProjectorLaunch, EveryMountArgumentInItsPlace)
   expectSameTransform(tf2::Transform(opticalRotation()), lookup("tilted_link", "tilted_optical"),
                       "tilted_link <- tilted_optical");
 
-  const sensor_msgs::CameraInfo::ConstPtr info = waitForInfo("/tilted/camera_info");
+  const sensor_msgs::CameraInfo::ConstPtr info =
+      ros::topic::waitForMessage<sensor_msgs::CameraInfo>("/tilted/camera_info", ros::Duration(15.0));
   ASSERT_TRUE(info != nullptr);
   EXPECT_EQ("tilted_optical", info->header.frame_id);
   EXPECT_DOUBLE_EQ(1900.0, info->P[0]);
