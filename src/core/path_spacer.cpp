@@ -89,32 +89,34 @@ const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path)
   result_.truncated = false;
   result_.path_length = 0.0;
 
-  // Usually every point is finite: then the input is used as it is, without a copy.
+  // Usually every point is finite: then the input is used as it is, without a copy, and one pass
+  // accumulates the arc length from the destination back to each point (from the destination, so
+  // a trimmed start leaves the rest bit-identical). A non-finite sum sends the path through the
+  // filter below and a second pass over the finite points only.
   points_in_use_ = &path;
   result_.dropped_points = 0;
-  if (!std::all_of(path.begin(), path.end(), [](const Vec2& p) { return isFinite(p); }))
+  if (path.empty())
+  {
+    return result_;
+  }
+  accumulateFromEnd(path);
+  if ((!std::isfinite(from_end_.front()) || !isFinite(path.back())) &&  // (back: a one-point path)
+      !std::all_of(path.begin(), path.end(), [](const Vec2& p) { return isFinite(p); }))
   {
     points_.clear();
     points_.reserve(path.size());
     std::copy_if(path.begin(), path.end(), std::back_inserter(points_), [](const Vec2& p) { return isFinite(p); });
     result_.dropped_points = path.size() - points_.size();
     points_in_use_ = &points_;
+    if (points_.empty())
+    {
+      return result_;
+    }
+    accumulateFromEnd(points_);
   }
   const std::vector<Vec2>& points = *points_in_use_;
-  if (points.empty())
-  {
-    return result_;
-  }
   result_.has_destination = true;
   result_.destination = points.back();
-  // Arc length from the destination back to each point, accumulated from the destination so that
-  // a trimmed start leaves the rest bit-identical.
-  from_end_.resize(points.size());
-  from_end_.back() = 0.0;
-  for (std::size_t i = points.size() - 1; i > 0; --i)
-  {
-    from_end_[i - 1] = from_end_[i] + distance(points[i], points[i - 1]);
-  }
   result_.path_length = from_end_.front();
 
   if (parameters_.mode == SpacingMode::Paper)
@@ -126,6 +128,18 @@ const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path)
     placeExact();
   }
   return result_;
+}
+
+void PathSpacer::accumulateFromEnd(const std::vector<Vec2>& points)
+{
+  from_end_.resize(points.size());
+  double sum = 0.0;
+  from_end_.back() = sum;
+  for (std::size_t i = points.size() - 1; i > 0; --i)
+  {
+    sum += distance(points[i], points[i - 1]);
+    from_end_[i - 1] = sum;
+  }
 }
 
 void PathSpacer::placeExact()
@@ -154,6 +168,8 @@ void PathSpacer::placeExact()
 
   // Tips and tails each have their own walker: both sequences grow, but a tail may lie beyond the
   // next tip (arrow longer than the spacing), so one shared walker could not stay monotonic.
+  const double half_width = 0.5 * std::max(parameters_.arrow.shaft_diameter, parameters_.arrow.head_diameter);
+  const double clear_of_circle = (radius + arrow_length + half_width) * (1.0 + 1e-9) + 1e-9;
   BackwardWalker tips(points, from_end_);
   BackwardWalker tails(points, from_end_);
   std::size_t placed = 0;
@@ -169,7 +185,11 @@ void PathSpacer::placeExact()
     arrow.tip = tips.pointAt(tip_s);
     arrow.tail = tails.pointAt(tail_s);
     // A path curling back round its goal can bring an arrow over the circle: leave that one out.
-    if (ArrowOutline(arrow, parameters_.arrow).distanceTo(result_.destination) >= radius)
+    // The outline lies within half its widest diameter of the segment tail-tip, which is no longer
+    // than the arc between them, so an arrow whose tip is further than that from the circle cannot
+    // touch it (the exact test is only needed near the destination).
+    if (distance(arrow.tip, result_.destination) > clear_of_circle ||
+        ArrowOutline(arrow, parameters_.arrow).distanceTo(result_.destination) >= radius)
     {
       ++placed;
     }

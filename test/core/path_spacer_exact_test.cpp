@@ -59,6 +59,23 @@ std::vector<Vec2> unevenArc(double r, double angle, unsigned seed)
   return path;
 }
 
+/// The point at arc length `s` from the last point of `path`, by a plain walk (a test oracle).
+Vec2 pointFromEnd(const std::vector<Vec2>& path, double s)
+{
+  for (std::size_t i = path.size() - 1; i > 0; --i)
+  {
+    const Vec2 a = path[i], b = path[i - 1];
+    const double length = std::hypot(b.x - a.x, b.y - a.y);
+    if (s <= length)
+    {
+      const double f = length > 0.0 ? s / length : 0.0;
+      return {a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f};
+    }
+    s -= length;
+  }
+  return path.front();
+}
+
 /// Angle (arc length / r) of a point on the circle of radius r, measured from angle 0.
 double arcAngle(const Vec2& p) { return std::atan2(p.y, p.x); }
 }  // namespace
@@ -155,20 +172,85 @@ TEST(PathSpacerExact, ArrowsNeverOverlapTheDestinationCircle)
 {
   SpacingParameters p = exactParameters();
   p.destination_gap = 0.0;  // worst case: the first tip is exactly on the circle's edge
+  // A tight spiral-like curl that comes back around the goal: chords cut corners.
+  const std::vector<Vec2> path = unevenArc(0.4, 5.5, 3);
   for (double diameter : {0.05, 0.2, 0.6, 1.2})
   {
-    p.circle_diameter = diameter;
-    PathSpacer spacer(p);
-    // A tight spiral-like curl that comes back around the goal: chords cut corners.
-    const std::vector<Vec2> path = unevenArc(0.4, 5.5, 3);
-    const SpacedPath& out = spacer.space(path);
-    ASSERT_FALSE(out.arrows.empty()) << diameter;
-    for (const Arrow& a : out.arrows)
+    for (double head_diameter : {0.0, 0.12, 0.5})  // narrower than the shaft, and far wider
     {
-      const ArrowOutline outline(a, p.arrow);
-      EXPECT_GE(outline.distanceTo(out.destination), 0.5 * diameter - 1e-9) << "diameter " << diameter;
+      p.circle_diameter = diameter;
+      p.arrow.head_diameter = head_diameter;
+      PathSpacer spacer(p);
+      const SpacedPath& out = spacer.space(path);
+      // (A 1.2 m circle round a 0.8 m wide curl leaves no room for a 0.5 m wide head.)
+      const bool room = diameter < 1.0 || head_diameter < 0.5;
+      ASSERT_EQ(out.arrows.empty(), !room) << diameter << ", head diameter " << head_diameter;
+      for (const Arrow& a : out.arrows)
+      {
+        const ArrowOutline outline(a, p.arrow);
+        EXPECT_GE(outline.distanceTo(out.destination), 0.5 * diameter - 1e-9)
+            << "diameter " << diameter << ", head diameter " << head_diameter;
+      }
     }
   }
+}
+
+TEST(PathSpacerExact, ExactlyTheArrowsOverTheCircleAreLeftOut)
+{
+  // Random walks that wander round their destination: every arrow position the spacing gives is
+  // kept if and only if its outline stays off the circle (an oracle placing them independently).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> turn(-1.2, 1.2), step(0.01, 0.15), size(0.02, 0.6);
+  std::size_t dropped_in_total = 0, kept_in_total = 0;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    SpacingParameters p = exactParameters();
+    p.destination_gap = 0.0;
+    p.spacing = size(rng);
+    p.circle_diameter = 2.0 * size(rng);
+    p.arrow.shaft_length = size(rng);
+    p.arrow.head_length = 0.5 * size(rng);
+    p.arrow.shaft_diameter = 0.3 * size(rng);
+    p.arrow.head_diameter = size(rng);
+    std::vector<Vec2> path{{0.0, 0.0}};
+    double heading = 0.0;
+    for (int i = 0; i < 60; ++i)
+    {
+      heading += turn(rng);
+      const double d = step(rng);
+      path.push_back({path.back().x + d * std::cos(heading), path.back().y + d * std::sin(heading)});
+    }
+    PathSpacer spacer(p);
+    const SpacedPath& out = spacer.space(path);
+    std::vector<Arrow> expected;
+    for (int k = 0;; ++k)
+    {
+      const double tip = 0.5 * p.circle_diameter + k * p.spacing;
+      if (tip + p.arrow.length() > out.path_length)
+      {
+        break;
+      }
+      const Arrow arrow{pointFromEnd(path, tip + p.arrow.length()), pointFromEnd(path, tip)};
+      if (ArrowOutline(arrow, p.arrow).distanceTo(path.back()) >= 0.5 * p.circle_diameter)
+      {
+        expected.push_back(arrow);
+      }
+      else
+      {
+        ++dropped_in_total;
+      }
+    }
+    ASSERT_EQ(out.arrows.size(), expected.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < expected.size(); ++k)
+    {
+      EXPECT_NEAR(out.arrows[k].tip.x, expected[k].tip.x, 1e-9) << "trial " << trial << ", arrow " << k;
+      EXPECT_NEAR(out.arrows[k].tip.y, expected[k].tip.y, 1e-9) << "trial " << trial << ", arrow " << k;
+    }
+    kept_in_total += expected.size();
+  }
+  // The walks really do bring arrows over their circles, and leave others clear of it.
+  EXPECT_GT(dropped_in_total, 50u);
+  EXPECT_GT(kept_in_total, 500u);
 }
 
 TEST(PathSpacerExact, ArrowOutlineDistance)
@@ -237,6 +319,17 @@ TEST(PathSpacerExact, NonFinitePointsAreDroppedAndCounted)
   const SpacedPath& all_bad = spacer.space({{nan, nan}, {inf, 0}});
   EXPECT_EQ(all_bad.dropped_points, 2u);
   EXPECT_FALSE(all_bad.has_destination);
+
+  // A non-finite destination: the last finite point becomes the destination.
+  const SpacedPath& bad_end = spacer.space({{0, 0}, {1.0, 0}, {nan, 1.0}});
+  EXPECT_EQ(bad_end.dropped_points, 1u);
+  ASSERT_TRUE(bad_end.has_destination);
+  EXPECT_DOUBLE_EQ(bad_end.destination.x, 1.0);
+  EXPECT_EQ(bad_end.arrows.size(), 3u);
+  // One pose, and it is not finite: nothing at all.
+  const SpacedPath& one_bad = spacer.space({{inf, 2.0}});
+  EXPECT_EQ(one_bad.dropped_points, 1u);
+  EXPECT_FALSE(one_bad.has_destination);
 }
 
 TEST(PathSpacerExact, MillionPosesAndArrowCap)

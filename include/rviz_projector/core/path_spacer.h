@@ -38,6 +38,7 @@ public:
   const SpacedPath& space(const std::vector<Vec2>& path);
 
 private:
+  void accumulateFromEnd(const std::vector<Vec2>& points);  // fills from_end_
   void placeExact();
   void placePaper();
 
