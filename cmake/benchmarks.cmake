@@ -14,7 +14,7 @@ if(benchmark_FOUND)
     bench/micro/reference_baseline.cpp
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)
-  target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro)
+  target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro test/support)
   # pathToFloorPoints is in the ROS conversion library, FloorMesh in the rviz plugin library.
   target_link_libraries(${PROJECT_NAME}_microbench ${PROJECT_NAME} ${PROJECT_NAME}_ros ${PROJECT_NAME}_core
     ${catkin_LIBRARIES} benchmark::benchmark)

@@ -1,18 +1,17 @@
 // The ProjectedPath update including the hand-over to the renderer: everything of PathUpdate plus
-// FloorMesh::setFlatTriangles (the OGRE ManualObject the display draws all arrows with). OGRE runs
+// FloorMesh::setFlatTriangles (the vertex buffer the display draws all arrows with). OGRE runs
 // without a render system or X server here: vertex buffers are OGRE's system-memory
 // DefaultHardwareBufferManager, so this counts the CPU work of filling them, not the GL upload.
 #include <memory>
 #include <vector>
 
-#include <OgreDefaultHardwareBufferManager.h>
-#include <OgreLogManager.h>
-#include <OgreMaterialManager.h>
-#include <OgreRoot.h>
+#include <OgreColourValue.h>
 #include <OgreSceneManager.h>
+
 #include <benchmark/benchmark.h>
 
 #include "bench_paths.h"
+#include "headless_ogre.h"
 #include "rviz_projector/core/arrow_outline.h"
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/path_spacer.h"
@@ -24,24 +23,10 @@ namespace
 {
 using namespace rviz_projector;
 
-/// A headless OGRE: root without plugins or render system, software hardware buffers.
-Ogre::SceneManager* headlessScene()
-{
-  static Ogre::SceneManager* scene = [] {
-    auto* log = new Ogre::LogManager();
-    log->createLog("rviz_projector_microbench_ogre.log", true, false, true);  // no file, no console
-    auto* root = new Ogre::Root("", "", "");
-    new Ogre::DefaultHardwareBufferManager();
-    Ogre::MaterialManager::getSingleton().initialise();  // default technique + pass (Root::initialise would)
-    return root->createSceneManager();
-  }();
-  return scene;
-}
-
 void BM_PathUpdateMesh(benchmark::State& state)
 {
   const nav_msgs::Path& path = rviz_projector_bench::pathMessage(static_cast<std::size_t>(state.range(0)));
-  Ogre::SceneManager* scene = headlessScene();
+  Ogre::SceneManager* scene = rviz_projector_test::headlessScene();
   FloorMesh arrow_mesh(scene, scene->getRootSceneNode());
   FloorMesh circle_mesh(scene, scene->getRootSceneNode());
   const Ogre::ColourValue magenta(1, 0, 1, 1), green(0, 1, 0, 1);

@@ -1,34 +1,65 @@
 #include "rviz_projector/displays/floor_mesh.h"
 
-#include <OgreManualObject.h>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 #include <OgreMaterialManager.h>
-#include <OgreResourceGroupManager.h>
 #include <OgrePass.h>
+#include <OgreResourceGroupManager.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 #include <OgreTechnique.h>
+#include <rviz/ogre_helpers/compatibility.h>
 
+#include "rviz_projector/displays/floor_mesh_renderable.h"
 #include "rviz_projector/displays/ogre_name.h"
 
 namespace rviz_projector
 {
+namespace
+{
+/// Grows a bounding box by points, without Ogre::AxisAlignedBox::merge's per-point checks.
+class Bounds
+{
+public:
+  void add(float x, float y, float z)
+  {
+    min_x_ = std::min(min_x_, x), min_y_ = std::min(min_y_, y), min_z_ = std::min(min_z_, z);
+    max_x_ = std::max(max_x_, x), max_y_ = std::max(max_y_, y), max_z_ = std::max(max_z_, z);
+  }
+  Ogre::AxisAlignedBox box() const
+  {
+    if (!(min_x_ <= max_x_ && min_y_ <= max_y_ && min_z_ <= max_z_))
+    {
+      return Ogre::AxisAlignedBox();  // null: nothing (finite) was added
+    }
+    return Ogre::AxisAlignedBox(min_x_, min_y_, min_z_, max_x_, max_y_, max_z_);
+  }
+
+private:
+  float min_x_ = HUGE_VALF, min_y_ = HUGE_VALF, min_z_ = HUGE_VALF;
+  float max_x_ = -HUGE_VALF, max_y_ = -HUGE_VALF, max_z_ = -HUGE_VALF;
+};
+}  // namespace
+
 FloorMesh::FloorMesh(Ogre::SceneManager* scene_manager, Ogre::SceneNode* parent)
-  : scene_manager_(scene_manager)
+  : scene_manager_(scene_manager), renderable_(std::make_unique<FloorMeshRenderable>())
 {
   node_ = parent->createChildSceneNode();
-  manual_ = scene_manager_->createManualObject(uniqueOgreName("rviz_projector_mesh_"));
-  manual_->setDynamic(true);
-  node_->attachObject(manual_);
   material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_material_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
   material_->setReceiveShadows(false);
   material_->setCullingMode(Ogre::CULL_NONE);
+  rviz::setMaterial(*renderable_, material_);
+  node_->attachObject(renderable_.get());
 }
 
 FloorMesh::~FloorMesh()
 {
   node_->detachAllObjects();
-  scene_manager_->destroyManualObject(manual_);
   scene_manager_->destroySceneNode(node_);
+  renderable_.reset();
   Ogre::MaterialManager::getSingleton().remove(material_->getName(), material_->getGroup());
 }
 
@@ -52,26 +83,6 @@ void FloorMesh::setMaterial(bool lit, const Ogre::ColourValue& colour)
   }
 }
 
-void FloorMesh::beginSection(std::size_t vertex_count, bool lit)
-{
-  if (lit != section_lit_)
-  {
-    clear();  // the vertex layout differs (normals vs colours): start a fresh section
-    section_lit_ = lit;
-  }
-  if (!has_section_)
-  {
-    has_section_ = true;
-    manual_->estimateVertexCount(vertex_count);
-    manual_->begin(material_->getName(), Ogre::RenderOperation::OT_TRIANGLE_LIST, material_->getGroup());
-  }
-  else
-  {
-    manual_->beginUpdate(0);
-    manual_->estimateVertexCount(vertex_count);
-  }
-}
-
 void FloorMesh::setFlatTriangles(const std::vector<Vec2>& triangles, double z, const Ogre::ColourValue& colour)
 {
   if (triangles.empty())
@@ -80,14 +91,22 @@ void FloorMesh::setFlatTriangles(const std::vector<Vec2>& triangles, double z, c
     return;
   }
   setMaterial(false, colour);
-  beginSection(triangles.size(), false);
-  const Ogre::Real height = static_cast<Ogre::Real>(z);
+  const std::uint32_t packed =
+      Ogre::VertexElement::convertColourValue(colour, Ogre::VertexElement::getBestColourVertexElementType());
+  const float height = static_cast<float>(z);
+  Bounds bounds;
+  float* out = renderable_->lock(triangles.size(), FloorMeshRenderable::Layout::PositionColour);
   for (const Vec2& v : triangles)
   {
-    manual_->position(static_cast<Ogre::Real>(v.x), static_cast<Ogre::Real>(v.y), height);
-    manual_->colour(colour);
+    const float x = static_cast<float>(v.x), y = static_cast<float>(v.y);
+    out[0] = x;
+    out[1] = y;
+    out[2] = height;
+    std::memcpy(out + 3, &packed, sizeof packed);
+    out += 4;
+    bounds.add(x, y, height);
   }
-  manual_->end();
+  renderable_->unlock(triangles.size(), bounds.box());
   triangle_count_ = triangles.size() / 3;
 }
 
@@ -100,22 +119,33 @@ void FloorMesh::setSolidTriangles(const std::vector<MeshVertex>& triangles, doub
     return;
   }
   setMaterial(true, colour);
-  beginSection(triangles.size(), true);
+  Bounds bounds;
+  float* out = renderable_->lock(triangles.size(), FloorMeshRenderable::Layout::PositionNormal);
   for (const MeshVertex& v : triangles)
   {
-    manual_->position(static_cast<Ogre::Real>(v.position.x), static_cast<Ogre::Real>(v.position.y),
-                      static_cast<Ogre::Real>(v.position.z + z));
-    manual_->normal(static_cast<Ogre::Real>(v.normal.x), static_cast<Ogre::Real>(v.normal.y),
-                    static_cast<Ogre::Real>(v.normal.z));
+    const float x = static_cast<float>(v.position.x), y = static_cast<float>(v.position.y),
+                h = static_cast<float>(v.position.z + z);
+    out[0] = x;
+    out[1] = y;
+    out[2] = h;
+    out[3] = static_cast<float>(v.normal.x);
+    out[4] = static_cast<float>(v.normal.y);
+    out[5] = static_cast<float>(v.normal.z);
+    out += 6;
+    bounds.add(x, y, h);
   }
-  manual_->end();
+  renderable_->unlock(triangles.size(), bounds.box());
   triangle_count_ = triangles.size() / 3;
 }
 
 void FloorMesh::clear()
 {
-  manual_->clear();
-  has_section_ = false;
+  renderable_->clear();
   triangle_count_ = 0;
+}
+
+std::size_t FloorMesh::bufferAllocations() const
+{
+  return renderable_->allocations();
 }
 }  // namespace rviz_projector

@@ -2,6 +2,7 @@
 // checked by the arrows it holds, its statuses and the pixels of a rendered top-down view.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -186,6 +187,9 @@ TEST_F(ProjectedPathTest, PropertyChangesRedrawWithoutANewMessage)
 
   display_->subProp("Style")->setValue("3D");
   EXPECT_EQ(display_->arrowTriangleCount(), 3u * 5u * 16u);
+  // Shaded, so not exactly the colour, but clearly blue and still in the same place.
+  const QRgb shaded = rviz_->renderMainView().pixel(shaft);
+  EXPECT_GT(qBlue(shaded), 2 * std::max(qRed(shaded), qGreen(shaded)) + 40) << describe(shaded);
   display_->subProp("Spacing mode")->setValue("Paper");
   EXPECT_GT(display_->spacedPath().arrows.size(), 0u);
 }

@@ -1,8 +1,9 @@
 // One batched Ogre mesh of triangles for everything a display draws in one colour (all arrows in
-// a single ManualObject, not a scene node per arrow).
+// one vertex buffer and one draw call, not a scene node per arrow). A new set of triangles is
+// written straight into the reused hardware buffer (FloorMeshRenderable).
 #pragma once
 
-#include <string>
+#include <memory>
 #include <vector>
 
 #include <OgreColourValue.h>
@@ -13,13 +14,14 @@
 
 namespace Ogre
 {
-class ManualObject;
 class SceneManager;
 class SceneNode;
 }  // namespace Ogre
 
 namespace rviz_projector
 {
+class FloorMeshRenderable;
+
 class FloorMesh
 {
 public:
@@ -36,18 +38,16 @@ public:
 
   /// Number of triangles currently drawn.
   std::size_t triangleCount() const { return triangle_count_; }
-  Ogre::ManualObject* manualObject() const { return manual_; }
+  /// How often the vertex buffer was (re)allocated; paths that fit in it do not allocate.
+  std::size_t bufferAllocations() const;
 
 private:
   void setMaterial(bool lit, const Ogre::ColourValue& colour);
-  void beginSection(std::size_t vertex_count, bool lit);
 
   Ogre::SceneManager* scene_manager_;
   Ogre::SceneNode* node_;
-  Ogre::ManualObject* manual_;
+  std::unique_ptr<FloorMeshRenderable> renderable_;
   Ogre::MaterialPtr material_;
   std::size_t triangle_count_ = 0;
-  bool section_lit_ = false;
-  bool has_section_ = false;  // ManualObject section 0 exists (works on OGRE 1.9 and 1.12)
 };
 }  // namespace rviz_projector
