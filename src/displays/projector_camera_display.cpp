@@ -5,7 +5,10 @@
 
 #include <OgreCamera.h>
 #include <OgreMatrix4.h>
+#include <OgreRenderSystem.h>
+#include <OgreRenderSystemCapabilities.h>
 #include <OgreRenderWindow.h>
+#include <OgreRoot.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 #include <OgreViewport.h>
@@ -30,6 +33,8 @@
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/status_property.h>
 #include <rviz/properties/string_property.h>
+#include <rviz/render_panel.h>
+#include <rviz/view_manager.h>
 #include <rviz/window_manager_interface.h>
 #include <sensor_msgs/Image.h>
 #include <tf2_ros/buffer.h>
@@ -39,6 +44,7 @@
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/ogre_name.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projector_footprint_visual.h"
@@ -249,6 +255,7 @@ void ProjectorCameraDisplay::setDefaultVisibility(rviz::Property* child, rviz::D
 
 void ProjectorCameraDisplay::onEnable()
 {
+  checkMainViewCost();
   subscribe();
   if (!window_)
   {
@@ -256,6 +263,28 @@ void ProjectorCameraDisplay::onEnable()
   }
   updateOutput();
   render_timer_.start();
+}
+
+void ProjectorCameraDisplay::checkMainViewCost()
+{
+  // The main view's render window and the renderer are fixed for the life of rviz.
+  rviz::ViewManager* views = context_->getViewManager();
+  rviz::RenderPanel* panel = views != nullptr ? views->getRenderPanel() : nullptr;
+  Ogre::RenderWindow* main_window = panel != nullptr ? panel->getRenderWindow() : nullptr;
+  Ogre::RenderSystem* render_system = Ogre::Root::getSingleton().getRenderSystem();
+  const Ogre::RenderSystemCapabilities* capabilities =
+      render_system != nullptr ? render_system->getCapabilities() : nullptr;
+  const std::string warning = main_window != nullptr && capabilities != nullptr ?
+                                  mainViewCostWarning(main_window->getFSAA(), capabilities->getDeviceName()) :
+                                  std::string();
+  if (warning.empty())
+  {
+    deleteStatus("Main view");
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Warn, "Main view", QString::fromStdString(warning));
+  }
 }
 
 void ProjectorCameraDisplay::onDisable()
@@ -272,6 +301,7 @@ void ProjectorCameraDisplay::onDisable()
 void ProjectorCameraDisplay::reset()
 {
   Display::reset();
+  checkMainViewCost();
   last_info_.reset();
   has_lens_ = false;
   markChanged();

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "optical_orientation.h"
 #include "rviz_projector/core/floor_footprint.h"
 
 using rviz_projector::FloorFootprint;
@@ -19,14 +20,8 @@ RigidTransform lookingDown(double height) { return RigidTransform::fromQuaternio
 /// Optical frame pitched down by `pitch` from horizontal, looking along world +x.
 RigidTransform pitchedDown(double pitch, double height)
 {
-  // Body frame (x forward, z up) pitched by +pitch about y, then the body->optical rotation.
-  const double s = std::sin(pitch / 2), c = std::cos(pitch / 2);
-  // q_body = (0, s, 0, c); q_optical_in_body = (-0.5, 0.5, -0.5, 0.5); product q_body * q_opt.
-  const double ax = 0, ay = s, az = 0, aw = c;
-  const double bx = -0.5, by = 0.5, bz = -0.5, bw = 0.5;
-  return RigidTransform::fromQuaternion(aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
-                                        aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz,
-                                        {0, 0, height});
+  const rviz_projector_test::Quaternion q = rviz_projector_test::opticalOrientation(0.0, pitch, 0.0);
+  return RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, {0, 0, height});
 }
 }  // namespace
 

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <OgreRenderSystem.h>
+#include <OgreRenderSystemCapabilities.h>
+#include <OgreRenderWindow.h>
+#include <OgreRoot.h>
 #include <QApplication>
 #include <QGuiApplication>
 #include <QImage>
@@ -27,9 +31,11 @@
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/projected_path_display.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
+#include "optical_orientation.h"
 #include "rviz_test_fixture.h"
 
 using rviz_projector::PinholeModel;
@@ -57,33 +63,11 @@ sensor_msgs::CameraInfo cameraInfo(unsigned w, unsigned h, double f, double cx, 
 }
 
 /// Quaternion (x, y, z, w) of roll-pitch-yaw about fixed x, y, z (as tf's setRPY).
-void rpy(double roll, double pitch, double yaw, double q[4])
-{
-  const double cr = std::cos(roll / 2), sr = std::sin(roll / 2), cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
-  const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
-  q[0] = sr * cp * cy - cr * sp * sy;
-  q[1] = cr * sp * cy + sr * cp * sy;
-  q[2] = cr * cp * sy - sr * sp * cy;
-  q[3] = cr * cp * cy + sr * sp * sy;
-}
-
-/// Hamilton product a * b of (x, y, z, w) quaternions.
-void multiply(const double a[4], const double b[4], double out[4])
-{
-  out[0] = a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1];
-  out[1] = a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0];
-  out[2] = a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3];
-  out[3] = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2];
-}
-
 /// Optical frame of a projector body at `position` (x forward, z up) with roll/pitch/yaw.
 Mount bodyMount(const Vec3& position, double roll, double pitch, double yaw)
 {
-  double body[4], optical[4];
-  rpy(roll, pitch, yaw, body);
-  const double body_to_optical[4] = {-0.5, 0.5, -0.5, 0.5};
-  multiply(body, body_to_optical, optical);
-  return Mount{position, optical[0], optical[1], optical[2], optical[3]};
+  const rviz_projector_test::Quaternion q = rviz_projector_test::opticalOrientation(roll, pitch, yaw);
+  return Mount{position, q.x, q.y, q.z, q.w};
 }
 
 /// Floor point (z = 0) seen at `pixel`.
@@ -651,6 +635,26 @@ TEST_F(ProjectorSceneTest, TestPatternDrawsAMetricGrid)
   EXPECT_GT(countColour(frame, qRgb(255, 255, 255)), 2000);
   projector_->subProp("Test pattern")->setValue(false);
   EXPECT_EQ(countColour(imagePart(grab()), qRgb(255, 255, 255)), 0);
+}
+
+TEST_F(ProjectorCameraTest, MultisampledMainViewOnASoftwareRendererIsReported)
+{
+  // The test X server has no GPU: rviz renders with Mesa llvmpipe and, as installed, with 4x
+  // anti-aliasing in its main view, the set-up that holds the projector window back.
+  const unsigned int fsaa = rviz_->panel()->getRenderWindow()->getFSAA();
+  const std::string renderer = Ogre::Root::getSingleton().getRenderSystem()->getCapabilities()->getDeviceName();
+  if (fsaa <= 1 || !rviz_projector::isSoftwareRenderer(renderer))
+  {
+    GTEST_SKIP() << "main view " << fsaa << "x anti-aliasing on '" << renderer << "': nothing to report";
+  }
+  Status s = statusOf(projector_, "Main view");
+  ASSERT_TRUE(s.present);
+  EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
+  EXPECT_NE(s.text.indexOf("--disable-anti-aliasing"), -1) << s.text.toStdString();
+  EXPECT_NE(s.text.indexOf(QString::number(fsaa) + "x"), -1) << s.text.toStdString();
+  // Reset clears statuses; this one still holds.
+  projector_->reset();
+  EXPECT_TRUE(statusOf(projector_, "Main view").present);
 }
 
 TEST_F(ProjectorCameraTest, LifecycleLeavesNoStrayWindowsAndNoVisibilityBitLeak)

@@ -23,6 +23,7 @@
 #include <rviz/visualization_manager.h>
 #include <rviz/yaml_config_reader.h>
 
+#include "optical_orientation.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_test_fixture.h"
@@ -78,14 +79,7 @@ std::size_t defaultExactArrows(double length)
 geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
                                                double y, double z, double pitch)
 {
-  // Body (x forward, z up) pitched down about y, then body -> optical (z forward, x right, y down).
-  const double body[4] = {0.0, std::sin(pitch / 2), 0.0, std::cos(pitch / 2)};
-  const double b2o[4] = {-0.5, 0.5, -0.5, 0.5};
-  double q[4];
-  q[0] = body[3] * b2o[0] + body[0] * b2o[3] + body[1] * b2o[2] - body[2] * b2o[1];
-  q[1] = body[3] * b2o[1] - body[0] * b2o[2] + body[1] * b2o[3] + body[2] * b2o[0];
-  q[2] = body[3] * b2o[2] + body[0] * b2o[1] - body[1] * b2o[0] + body[2] * b2o[3];
-  q[3] = body[3] * b2o[3] - body[0] * b2o[0] - body[1] * b2o[1] - body[2] * b2o[2];
+  const Quaternion q = opticalOrientation(0.0, pitch, 0.0);
   geometry_msgs::TransformStamped t;
   t.header.stamp = ros::Time::now();
   t.header.frame_id = parent;
@@ -93,10 +87,10 @@ geometry_msgs::TransformStamped projectorMount(const std::string& parent, const 
   t.transform.translation.x = x;
   t.transform.translation.y = y;
   t.transform.translation.z = z;
-  t.transform.rotation.x = q[0];
-  t.transform.rotation.y = q[1];
-  t.transform.rotation.z = q[2];
-  t.transform.rotation.w = q[3];
+  t.transform.rotation.x = q.x;
+  t.transform.rotation.y = q.y;
+  t.transform.rotation.z = q.z;
+  t.transform.rotation.w = q.w;
   return t;
 }
 

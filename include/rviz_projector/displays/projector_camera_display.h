@@ -99,6 +99,8 @@ public Q_SLOTS:
 private Q_SLOTS:
   void updateTopic();
   void updateOutput();
+  /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
+  void checkMainViewCost();
   void updateFullScreen();
   void updateCameraSettings();
   void updateFrameRate();
