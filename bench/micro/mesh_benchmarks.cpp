@@ -38,12 +38,7 @@ void BM_PathUpdateMesh(benchmark::State& state)
   {
     pathToFloorPoints(path, to_fixed, floor_points);
     const SpacedPath& spaced = spacer.space(floor_points);
-    arrow_triangles.clear();
-    arrow_triangles.reserve(spaced.arrows.size() * ArrowOutline::kVerticesPerArrow);
-    for (const Arrow& arrow : spaced.arrows)
-    {
-      ArrowOutline(arrow, parameters.arrow).appendTriangles(arrow_triangles);
-    }
+    ArrowOutline::trianglesOf(spaced.arrows, parameters.arrow, arrow_triangles);
     circle_triangles.clear();
     if (spaced.has_destination)
     {

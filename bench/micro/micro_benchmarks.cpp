@@ -135,12 +135,7 @@ void BM_ArrowOutline(benchmark::State& state)
   std::vector<Vec2> triangles;
   for (auto _ : state)
   {
-    triangles.clear();
-    triangles.reserve(input.size() * ArrowOutline::kVerticesPerArrow);
-    for (const Arrow& arrow : input)
-    {
-      ArrowOutline(arrow, dimensions).appendTriangles(triangles);
-    }
+    ArrowOutline::trianglesOf(input, dimensions, triangles);
     benchmark::DoNotOptimize(triangles.data());
     benchmark::ClobberMemory();
   }
@@ -195,12 +190,7 @@ void BM_PathUpdate(benchmark::State& state)
     const RigidTransform to_fixed = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{v.x, v.y, v.z});
     pathToFloorPoints(path, to_fixed, floor_points);
     const SpacedPath& spaced = spacer.space(floor_points);
-    arrow_triangles.clear();
-    arrow_triangles.reserve(spaced.arrows.size() * ArrowOutline::kVerticesPerArrow);
-    for (const Arrow& arrow : spaced.arrows)
-    {
-      ArrowOutline(arrow, parameters.arrow).appendTriangles(arrow_triangles);
-    }
+    ArrowOutline::trianglesOf(spaced.arrows, parameters.arrow, arrow_triangles);
     circle_triangles.clear();
     if (spaced.has_destination)
     {

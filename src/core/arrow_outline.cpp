@@ -44,6 +44,17 @@ ArrowOutline::ArrowOutline(const Arrow& arrow, const ArrowDimensions& dimensions
               neck + head_half,       neck + shaft_half, arrow.tail + shaft_half};
 }
 
+void ArrowOutline::trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
+                               std::vector<Vec2>& out)
+{
+  out.clear();
+  out.reserve(arrows.size() * kVerticesPerArrow);
+  for (const Arrow& arrow : arrows)
+  {
+    ArrowOutline(arrow, dimensions).appendTriangles(out);
+  }
+}
+
 void ArrowOutline::appendTriangles(std::vector<Vec2>& out) const
 {
   if (!valid_)

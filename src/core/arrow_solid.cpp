@@ -26,6 +26,17 @@ ArrowSolid::ArrowSolid(const Arrow& arrow, const ArrowDimensions& d)
   neck_ = tip_ - forward_ * head_length;
 }
 
+void ArrowSolid::trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
+                             std::vector<MeshVertex>& out)
+{
+  out.clear();
+  out.reserve(arrows.size() * kVerticesPerArrow);
+  for (const Arrow& arrow : arrows)
+  {
+    ArrowSolid(arrow, dimensions).appendTriangles(out);
+  }
+}
+
 void ArrowSolid::appendTriangles(std::vector<MeshVertex>& out) const
 {
   if (!valid_)

@@ -339,22 +339,12 @@ void ProjectedPathDisplay::redraw()
 
   if (style_property_->getOptionInt() == kSolid)
   {
-    solid_buffer_.clear();
-    solid_buffer_.reserve(spaced_->arrows.size() * ArrowSolid::kVerticesPerArrow);
-    for (const Arrow& arrow : spaced_->arrows)
-    {
-      ArrowSolid(arrow, dimensions).appendTriangles(solid_buffer_);
-    }
+    ArrowSolid::trianglesOf(spaced_->arrows, dimensions, solid_buffer_);
     arrow_mesh_->setSolidTriangles(solid_buffer_, height + kArrowLift, arrow_colour);
   }
   else
   {
-    flat_buffer_.clear();
-    flat_buffer_.reserve(spaced_->arrows.size() * ArrowOutline::kVerticesPerArrow);
-    for (const Arrow& arrow : spaced_->arrows)
-    {
-      ArrowOutline(arrow, dimensions).appendTriangles(flat_buffer_);
-    }
+    ArrowOutline::trianglesOf(spaced_->arrows, dimensions, flat_buffer_);
     arrow_mesh_->setFlatTriangles(flat_buffer_, height + kArrowLift, arrow_colour);
   }
 

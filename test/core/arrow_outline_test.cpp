@@ -79,6 +79,26 @@ TEST(ArrowOutline, ShortArrowIsAllHeadAndZeroLengthHasNoShape)
   EXPECT_TRUE(tris.empty());
 }
 
+TEST(ArrowOutline, TrianglesOfAPathReplaceTheBufferAndSkipShapelessArrows)
+{
+  const std::vector<Arrow> arrows{{{0.0, 0.0}, {0.18, 0.0}}, {{0.3, 0.3}, {0.3, 0.3}}, {{1.0, 1.0}, {1.0, 1.18}}};
+  std::vector<Vec2> tris(5, Vec2{9.0, 9.0});  // left over from the previous path
+  ArrowOutline::trianglesOf(arrows, dimensions(), tris);
+  ASSERT_EQ(tris.size(), 2 * ArrowOutline::kVerticesPerArrow);
+  std::vector<Vec2> second;
+  ArrowOutline(arrows[2], dimensions()).appendTriangles(second);
+  for (std::size_t i = 0; i < second.size(); ++i)
+  {
+    EXPECT_EQ(tris[ArrowOutline::kVerticesPerArrow + i].x, second[i].x);
+    EXPECT_EQ(tris[ArrowOutline::kVerticesPerArrow + i].y, second[i].y);
+  }
+  std::vector<MeshVertex> mesh(3);
+  ArrowSolid::trianglesOf(arrows, dimensions(), mesh);
+  EXPECT_EQ(mesh.size(), 2 * ArrowSolid::kVerticesPerArrow);
+  ArrowOutline::trianglesOf({}, dimensions(), tris);
+  EXPECT_TRUE(tris.empty());
+}
+
 TEST(ArrowSolid, MeshRestsOnTheFloorWithOutwardNormals)
 {
   const ArrowDimensions d = dimensions();

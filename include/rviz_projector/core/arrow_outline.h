@@ -23,6 +23,9 @@ public:
 
   ArrowOutline(const Arrow& arrow, const ArrowDimensions& dimensions);
 
+  /// The triangles of all `arrows` (what one mesh draws): `out` is cleared, then filled.
+  static void trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions, std::vector<Vec2>& out);
+
   /// False for a zero-length or non-finite arrow, which has no shape.
   bool valid() const { return valid_; }
   /// Outline, counter-clockwise seen from above: tail right, shaft end right, head right, tip,

@@ -22,6 +22,10 @@ public:
 
   ArrowSolid(const Arrow& arrow, const ArrowDimensions& dimensions);
 
+  /// The triangles of all `arrows` (what one mesh draws): `out` is cleared, then filled.
+  static void trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
+                          std::vector<MeshVertex>& out);
+
   /// Appends kVerticesPerArrow vertices (triangles, counter-clockwise from outside); nothing for
   /// a zero-length arrow.
   void appendTriangles(std::vector<MeshVertex>& out) const;
