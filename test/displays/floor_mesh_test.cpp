@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <OgreColourValue.h>
+#include <OgrePass.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
@@ -35,6 +36,9 @@ protected:
   {
     mesh_.reset();
     scene_->destroySceneNode(parent_);
+    // OGRE deletes the passes of removed materials when it next renders a frame; nothing renders
+    // here, so do it as a frame would (else LeakSanitizer reports them).
+    Ogre::Pass::processPendingPassUpdates();
   }
 
   /// The renderable FloorMesh attached below our parent node.

@@ -6,6 +6,7 @@
 #include <OgreDefaultHardwareBufferManager.h>
 #include <OgreLogManager.h>
 #include <OgreMaterialManager.h>
+#include <OgrePrerequisites.h>
 #include <OgreRoot.h>
 #include <OgreSceneManager.h>
 
@@ -20,7 +21,11 @@ inline Ogre::SceneManager* headlessScene()
     auto* root = new Ogre::Root("", "", "");
     new Ogre::DefaultHardwareBufferManager();
     Ogre::MaterialManager::getSingleton().initialise();  // default technique + pass (Root::initialise would)
+#if OGRE_VERSION >= ((1 << 16) | (10 << 8))
     return root->createSceneManager();
+#else
+    return root->createSceneManager(Ogre::ST_GENERIC);  // OGRE 1.9 (Noetic on Ubuntu 20.04)
+#endif
   }();
   return scene;
 }
