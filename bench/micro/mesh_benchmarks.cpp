@@ -12,9 +12,8 @@
 
 #include "bench_paths.h"
 #include "headless_ogre.h"
-#include "rviz_projector/core/arrow_outline.h"
-#include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/ros_conversions.h"
@@ -33,19 +32,14 @@ void BM_PathUpdateMesh(benchmark::State& state)
   const SpacingParameters parameters;
   PathSpacer spacer(parameters);
   const RigidTransform to_fixed;  // the transform lookup is in PathUpdate; identity here
-  std::vector<Vec2> floor_points, arrow_triangles, circle_triangles;
+  std::vector<Vec2> floor_points;
+  PathTriangles triangles;
   for (auto _ : state)
   {
     pathToFloorPoints(path, to_fixed, floor_points);
-    const SpacedPath& spaced = spacer.space(floor_points);
-    ArrowOutline::trianglesOf(spaced.arrows, parameters.arrow, arrow_triangles);
-    circle_triangles.clear();
-    if (spaced.has_destination)
-    {
-      DiscOutline(spaced.destination, parameters.circle_diameter).appendTriangles(circle_triangles);
-    }
-    arrow_mesh.setFlatTriangles(arrow_triangles, 0.011, magenta);
-    circle_mesh.setFlatTriangles(circle_triangles, 0.01, green);
+    triangles.build(spacer.space(floor_points), parameters, PathTriangles::ArrowStyle::Flat);
+    arrow_mesh.setFlatTriangles(triangles.flatArrows(), 0.011, magenta);
+    circle_mesh.setFlatTriangles(triangles.destination(), 0.01, green);
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
   state.counters["arrows"] = static_cast<double>(arrow_mesh.triangleCount() / 3);

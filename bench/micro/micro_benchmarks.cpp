@@ -20,8 +20,8 @@
 #include "bench_paths.h"
 #include "reference_baseline.h"
 #include "rviz_projector/core/arrow_outline.h"
-#include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/ros_conversions.h"
 
@@ -179,8 +179,7 @@ void BM_PathUpdate(benchmark::State& state)
   const SpacingParameters parameters;
   PathSpacer spacer(parameters);
   std::vector<Vec2> floor_points;
-  std::vector<Vec2> arrow_triangles;
-  std::vector<Vec2> circle_triangles;
+  PathTriangles triangles;
   std::size_t arrow_count = 0;
   for (auto _ : state)
   {
@@ -190,14 +189,9 @@ void BM_PathUpdate(benchmark::State& state)
     const RigidTransform to_fixed = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{v.x, v.y, v.z});
     pathToFloorPoints(path, to_fixed, floor_points);
     const SpacedPath& spaced = spacer.space(floor_points);
-    ArrowOutline::trianglesOf(spaced.arrows, parameters.arrow, arrow_triangles);
-    circle_triangles.clear();
-    if (spaced.has_destination)
-    {
-      DiscOutline(spaced.destination, parameters.circle_diameter).appendTriangles(circle_triangles);
-    }
-    benchmark::DoNotOptimize(arrow_triangles.data());
-    benchmark::DoNotOptimize(circle_triangles.data());
+    triangles.build(spaced, parameters, PathTriangles::ArrowStyle::Flat);
+    benchmark::DoNotOptimize(triangles.flatArrows().data());
+    benchmark::DoNotOptimize(triangles.destination().data());
     benchmark::ClobberMemory();
     arrow_count = spaced.arrows.size();
   }

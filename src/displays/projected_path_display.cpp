@@ -12,9 +12,6 @@
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/status_property.h>
 
-#include "rviz_projector/core/arrow_outline.h"
-#include "rviz_projector/core/arrow_solid.h"
-#include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_counter.h"
@@ -335,25 +332,18 @@ void ProjectedPathDisplay::redraw()
   Ogre::ColourValue circle_colour = circle_color_property_->getOgreColor();
   arrow_colour.a = alpha;
   circle_colour.a = alpha;
-  const ArrowDimensions& dimensions = spacer_.parameters().arrow;
-
-  if (style_property_->getOptionInt() == kSolid)
+  const bool solid = style_property_->getOptionInt() == kSolid;
+  triangles_.build(*spaced_, spacer_.parameters(),
+                   solid ? PathTriangles::ArrowStyle::Solid : PathTriangles::ArrowStyle::Flat);
+  if (solid)
   {
-    ArrowSolid::trianglesOf(spaced_->arrows, dimensions, solid_buffer_);
-    arrow_mesh_->setSolidTriangles(solid_buffer_, height + kArrowLift, arrow_colour);
+    arrow_mesh_->setSolidTriangles(triangles_.solidArrows(), height + kArrowLift, arrow_colour);
   }
   else
   {
-    ArrowOutline::trianglesOf(spaced_->arrows, dimensions, flat_buffer_);
-    arrow_mesh_->setFlatTriangles(flat_buffer_, height + kArrowLift, arrow_colour);
+    arrow_mesh_->setFlatTriangles(triangles_.flatArrows(), height + kArrowLift, arrow_colour);
   }
-
-  flat_buffer_.clear();
-  if (spaced_->has_destination)
-  {
-    DiscOutline(spaced_->destination, spacer_.parameters().circle_diameter).appendTriangles(flat_buffer_);
-  }
-  circle_mesh_->setFlatTriangles(flat_buffer_, height, circle_colour);
+  circle_mesh_->setFlatTriangles(triangles_.destination(), height, circle_colour);
   ProjectionChangeCounter::bump();
   context_->queueRender();
 }

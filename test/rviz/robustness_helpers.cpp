@@ -79,19 +79,7 @@ std::size_t defaultExactArrows(double length)
 geometry_msgs::TransformStamped projectorMount(const std::string& parent, const std::string& child, double x,
                                                double y, double z, double pitch)
 {
-  const Quaternion q = opticalOrientation(0.0, pitch, 0.0);
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ros::Time::now();
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = x;
-  t.transform.translation.y = y;
-  t.transform.translation.z = z;
-  t.transform.rotation.x = q.x;
-  t.transform.rotation.y = q.y;
-  t.transform.rotation.z = q.z;
-  t.transform.rotation.w = q.w;
-  return t;
+  return stampedTransform(parent, child, x, y, z, opticalOrientation(0.0, pitch, 0.0));
 }
 
 int projectorWindows(bool visible_only)

@@ -152,6 +152,12 @@ Status RvizTest::statusOf(rviz::Display* display, const QString& name)
 void RvizTest::publishStaticTransform(const std::string& parent, const std::string& child, double x, double y,
                                       double z, double yaw)
 {
+  static_tf_->sendTransform(stampedTransform(parent, child, x, y, z, fromRollPitchYaw(0.0, 0.0, yaw)));
+}
+
+geometry_msgs::TransformStamped stampedTransform(const std::string& parent, const std::string& child, double x,
+                                                double y, double z, const Quaternion& rotation)
+{
   geometry_msgs::TransformStamped t;
   t.header.stamp = ros::Time::now();
   t.header.frame_id = parent;
@@ -159,9 +165,11 @@ void RvizTest::publishStaticTransform(const std::string& parent, const std::stri
   t.transform.translation.x = x;
   t.transform.translation.y = y;
   t.transform.translation.z = z;
-  t.transform.rotation.z = std::sin(yaw / 2);
-  t.transform.rotation.w = std::cos(yaw / 2);
-  static_tf_->sendTransform(t);
+  t.transform.rotation.x = rotation.x;
+  t.transform.rotation.y = rotation.y;
+  t.transform.rotation.z = rotation.z;
+  t.transform.rotation.w = rotation.w;
+  return t;
 }
 
 bool sameColour(QRgb a, QRgb b, int tolerance)

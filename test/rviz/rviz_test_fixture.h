@@ -14,7 +14,10 @@
 #include <ros/ros.h>
 #include <rviz/properties/status_property.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+
+#include "optical_orientation.h"
 
 namespace rviz
 {
@@ -86,4 +89,7 @@ int countColour(const QImage& image, QRgb colour, int tolerance = 30);
 sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigned h, double f, double cx, double cy);
 /// "r,g,b" for test messages.
 std::string describe(QRgb c);
+/// A transform parent -> child stamped now: translation and rotation.
+geometry_msgs::TransformStamped stampedTransform(const std::string& parent, const std::string& child, double x,
+                                                double y, double z, const Quaternion& rotation);
 }  // namespace rviz_projector_test

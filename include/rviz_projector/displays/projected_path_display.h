@@ -9,8 +9,8 @@
 #include <nav_msgs/Path.h>
 #include <rviz/message_filter_display.h>
 
-#include "rviz_projector/core/mesh_vertex.h"
 #include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/vec2.h"
 #endif
 
@@ -88,8 +88,7 @@ private:
   bool have_path_ = false;
   nav_msgs::Path::ConstPtr last_msg_;
   std::size_t dropped_poses_ = 0;
-  std::vector<Vec2> flat_buffer_;
-  std::vector<MeshVertex> solid_buffer_;
+  PathTriangles triangles_;  // buffers kept between paths
   std::unique_ptr<FloorMesh> arrow_mesh_;
   std::unique_ptr<FloorMesh> circle_mesh_;
 };

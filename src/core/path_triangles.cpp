@@ -1,0 +1,27 @@
+#include "rviz_projector/core/path_triangles.h"
+
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/core/arrow_solid.h"
+#include "rviz_projector/core/disc_outline.h"
+
+namespace rviz_projector
+{
+void PathTriangles::build(const SpacedPath& path, const SpacingParameters& parameters, ArrowStyle style)
+{
+  if (style == ArrowStyle::Solid)
+  {
+    ArrowSolid::trianglesOf(path.arrows, parameters.arrow, solid_arrows_);
+    flat_arrows_.clear();
+  }
+  else
+  {
+    ArrowOutline::trianglesOf(path.arrows, parameters.arrow, flat_arrows_);
+    solid_arrows_.clear();
+  }
+  destination_.clear();
+  if (path.has_destination)
+  {
+    DiscOutline(path.destination, parameters.circle_diameter).appendTriangles(destination_);
+  }
+}
+}  // namespace rviz_projector

@@ -1,0 +1,54 @@
+// PathTriangles: what one spaced path hands to the meshes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/core/arrow_solid.h"
+#include "rviz_projector/core/disc_outline.h"
+#include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/path_triangles.h"
+
+using rviz_projector::ArrowOutline;
+using rviz_projector::ArrowSolid;
+using rviz_projector::PathSpacer;
+using rviz_projector::PathTriangles;
+using rviz_projector::SpacedPath;
+using rviz_projector::SpacingParameters;
+using rviz_projector::Vec2;
+
+TEST(PathTriangles, ArrowsInTheChosenStyleAndTheDestinationDisc)
+{
+  SpacingParameters p;
+  p.circle_diameter = 0.4;
+  PathSpacer spacer(p);
+  const SpacedPath& spaced = spacer.space({{0.0, 0.0}, {5.0, 0.0}});
+  ASSERT_GT(spaced.arrows.size(), 3u);
+  PathTriangles triangles;
+
+  triangles.build(spaced, spacer.parameters(), PathTriangles::ArrowStyle::Flat);
+  ASSERT_EQ(triangles.flatArrows().size(), spaced.arrows.size() * ArrowOutline::kVerticesPerArrow);
+  EXPECT_TRUE(triangles.solidArrows().empty());
+  // Every flat vertex lies on its arrow's outline: first arrow's triangles start at its tail.
+  const ArrowOutline first(spaced.arrows[0], spacer.parameters().arrow);
+  EXPECT_EQ(triangles.flatArrows()[0].x, first.corners()[0].x);
+  EXPECT_EQ(triangles.flatArrows()[0].y, first.corners()[0].y);
+  // The disc: centred on the destination (5, 0), 0.2 m radius.
+  ASSERT_FALSE(triangles.destination().empty());
+  double farthest = 0.0;
+  for (const Vec2& v : triangles.destination())
+  {
+    farthest = std::max(farthest, rviz_projector::distance(v, Vec2{5.0, 0.0}));
+  }
+  EXPECT_NEAR(farthest, 0.2, 1e-9);
+
+  triangles.build(spaced, spacer.parameters(), PathTriangles::ArrowStyle::Solid);
+  EXPECT_EQ(triangles.solidArrows().size(), spaced.arrows.size() * ArrowSolid::kVerticesPerArrow);
+  EXPECT_TRUE(triangles.flatArrows().empty()) << "the other style's buffer is emptied";
+
+  const SpacedPath& empty = spacer.space({});
+  triangles.build(empty, spacer.parameters(), PathTriangles::ArrowStyle::Flat);
+  EXPECT_TRUE(triangles.flatArrows().empty());
+  EXPECT_TRUE(triangles.destination().empty());
+}
