@@ -190,6 +190,15 @@ TEST_F(ProjectedPathTest, PropertyChangesRedrawWithoutANewMessage)
   // Shaded, so not exactly the colour, but clearly blue and still in the same place.
   const QRgb shaded = rviz_->renderMainView().pixel(shaft);
   EXPECT_GT(qBlue(shaded), 2 * std::max(qRed(shaded), qGreen(shaded)) + 40) << describe(shaded);
+  // Half transparent: the floor shows through (blue blended half and half with what is below).
+  display_->subProp("Style")->setValue("Flat");
+  display_->subProp("Alpha")->setValue(0.0);  // invisible: what lies under the shaft
+  const QRgb floor = rviz_->renderMainView().pixel(shaft);
+  display_->subProp("Alpha")->setValue(0.5);
+  const QRgb blended = rviz_->renderMainView().pixel(shaft);
+  EXPECT_NEAR(qBlue(blended), (255 + qBlue(floor)) / 2, 12) << describe(blended) << " over " << describe(floor);
+  EXPECT_NEAR(qRed(blended), qRed(floor) / 2, 12) << describe(blended) << " over " << describe(floor);
+  display_->subProp("Alpha")->setValue(1.0);
   display_->subProp("Spacing mode")->setValue("Paper");
   EXPECT_GT(display_->spacedPath().arrows.size(), 0u);
 }
