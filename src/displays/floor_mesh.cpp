@@ -26,8 +26,12 @@ class Bounds
 public:
   void add(float x, float y, float z)
   {
-    min_x_ = std::min(min_x_, x), min_y_ = std::min(min_y_, y), min_z_ = std::min(min_z_, z);
-    max_x_ = std::max(max_x_, x), max_y_ = std::max(max_y_, y), max_z_ = std::max(max_z_, z);
+    min_x_ = std::min(min_x_, x);
+    min_y_ = std::min(min_y_, y);
+    min_z_ = std::min(min_z_, z);
+    max_x_ = std::max(max_x_, x);
+    max_y_ = std::max(max_y_, y);
+    max_z_ = std::max(max_z_, z);
   }
   Ogre::AxisAlignedBox box() const
   {
