@@ -27,13 +27,14 @@ ArrowSolid::ArrowSolid(const Arrow& arrow, const ArrowDimensions& d)
 }
 
 void ArrowSolid::trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
-                             std::vector<MeshVertex>& out)
+                             std::vector<MeshVertex>& out, std::size_t limit)
 {
+  const std::size_t count = std::min(arrows.size(), limit);
   out.clear();
-  out.reserve(arrows.size() * kVerticesPerArrow);
-  for (const Arrow& arrow : arrows)
+  out.reserve(count * kVerticesPerArrow);
+  for (std::size_t i = 0; i < count; ++i)
   {
-    ArrowSolid(arrow, dimensions).appendTriangles(out);
+    ArrowSolid(arrows[i], dimensions).appendTriangles(out);
   }
 }
 

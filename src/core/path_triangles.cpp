@@ -10,12 +10,14 @@ void PathTriangles::build(const SpacedPath& path, const SpacingParameters& param
 {
   if (style == ArrowStyle::Solid)
   {
-    ArrowSolid::trianglesOf(path.arrows, parameters.arrow, solid_arrows_);
+    ArrowSolid::trianglesOf(path.arrows, parameters.arrow, solid_arrows_, kMaxSolidArrows);
+    arrows_left_out_ = path.arrows.size() > kMaxSolidArrows ? path.arrows.size() - kMaxSolidArrows : 0;
     flat_arrows_.clear();
   }
   else
   {
     ArrowOutline::trianglesOf(path.arrows, parameters.arrow, flat_arrows_);
+    arrows_left_out_ = 0;
     solid_arrows_.clear();
   }
   destination_.clear();

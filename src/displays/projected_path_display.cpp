@@ -335,6 +335,17 @@ void ProjectedPathDisplay::redraw()
   const bool solid = style_property_->getOptionInt() == kSolid;
   triangles_.build(*spaced_, spacer_.parameters(),
                    solid ? PathTriangles::ArrowStyle::Solid : PathTriangles::ArrowStyle::Flat);
+  if (triangles_.arrowsLeftOut() > 0)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Style",
+              QString("3D draws at most %1 arrows (those nearest the destination): %2 left out; Flat draws them all")
+                  .arg(PathTriangles::kMaxSolidArrows)
+                  .arg(triangles_.arrowsLeftOut()));
+  }
+  else
+  {
+    deleteStatus("Style");
+  }
   if (solid)
   {
     arrow_mesh_->setSolidTriangles(triangles_.solidArrows(), height + kArrowLift, arrow_colour);

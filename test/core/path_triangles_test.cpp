@@ -52,3 +52,30 @@ TEST(PathTriangles, ArrowsInTheChosenStyleAndTheDestinationDisc)
   EXPECT_TRUE(triangles.flatArrows().empty());
   EXPECT_TRUE(triangles.destination().empty());
 }
+
+TEST(PathTriangles, SolidArrowsAreCappedNearestTheDestinationFlatOnesAreNot)
+{
+  SpacedPath many;
+  many.has_destination = true;
+  for (std::size_t i = 0; i < PathTriangles::kMaxSolidArrows + 5; ++i)
+  {
+    const double x = -0.3 * static_cast<double>(i);  // arrow 0 nearest the destination at x = 0
+    many.arrows.push_back({{x - 0.2, 0.0}, {x - 0.02, 0.0}});
+  }
+  const SpacingParameters p;
+  PathTriangles triangles;
+  triangles.build(many, p, PathTriangles::ArrowStyle::Solid);
+  EXPECT_EQ(triangles.arrowsLeftOut(), 5u);
+  ASSERT_EQ(triangles.solidArrows().size(), PathTriangles::kMaxSolidArrows * ArrowSolid::kVerticesPerArrow);
+  // The last arrow drawn is arrow kMaxSolidArrows - 1: none of its vertices is beyond its tail.
+  double min_x = 0.0;
+  for (const auto& v : triangles.solidArrows())
+  {
+    min_x = std::min(min_x, v.position.x);
+  }
+  EXPECT_NEAR(min_x, many.arrows[PathTriangles::kMaxSolidArrows - 1].tail.x, 1e-9);
+
+  triangles.build(many, p, PathTriangles::ArrowStyle::Flat);
+  EXPECT_EQ(triangles.arrowsLeftOut(), 0u);
+  EXPECT_EQ(triangles.flatArrows().size(), many.arrows.size() * ArrowOutline::kVerticesPerArrow);
+}

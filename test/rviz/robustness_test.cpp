@@ -26,6 +26,9 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "robustness_helpers.h"
+#include "rviz_projector/core/arrow_outline.h"
+#include "rviz_projector/core/arrow_solid.h"
+#include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/displays/projected_path_display.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
@@ -139,6 +142,30 @@ TEST_F(PathRobustness, MillionPoses)
   EXPECT_EQ(path().level, rviz::StatusProperty::Ok);
   EXPECT_EQ(text(path()), std::to_string(arrows) + " arrows on 1000.00 m of path");
   std::printf("10^6 poses: %zu arrows, %.2f s from publish to drawn\n", arrows, seconds);
+  expectRvizRenders();
+}
+
+TEST_F(PathRobustness, ThreeDStyleOfAVeryLongPathIsCappedFlatIsNot)
+{
+  // 105 m at the smallest spacing: about 10,500 arrows, more than 3D builds (240 vertices each).
+  display_->subProp("Spacing")->setValue(0.01);
+  display_->subProp("Style")->setValue("3D");
+  ASSERT_TRUE(publishAndWait(makePath("odom", line(Vec3{0, 0, 0}, Vec3{105, 0, 0}, 10501)), 30.0));
+  const std::size_t arrows = display_->spacedPath().arrows.size();
+  ASSERT_GT(arrows, rviz_projector::PathTriangles::kMaxSolidArrows);
+  EXPECT_EQ(display_->arrowTriangleCount(),
+            rviz_projector::PathTriangles::kMaxSolidArrows * rviz_projector::ArrowSolid::kVerticesPerArrow / 3);
+  const Status style = statusOf(display_, "Style");
+  ASSERT_TRUE(style.present);
+  EXPECT_EQ(style.level, rviz::StatusProperty::Warn);
+  EXPECT_NE(text(style).find(std::to_string(arrows - rviz_projector::PathTriangles::kMaxSolidArrows) + " left out"),
+            std::string::npos)
+      << text(style);
+  EXPECT_EQ(path().level, rviz::StatusProperty::Ok);
+
+  display_->subProp("Style")->setValue("Flat");
+  EXPECT_FALSE(statusOf(display_, "Style").present);
+  EXPECT_EQ(display_->arrowTriangleCount(), arrows * rviz_projector::ArrowOutline::kVerticesPerArrow / 3);
   expectRvizRenders();
 }
 

@@ -22,9 +22,10 @@ public:
 
   ArrowSolid(const Arrow& arrow, const ArrowDimensions& dimensions);
 
-  /// The triangles of all `arrows` (what one mesh draws): `out` is cleared, then filled.
+  /// The triangles of the first `limit` of `arrows` (what one mesh draws): `out` is cleared, then
+  /// filled.
   static void trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
-                          std::vector<MeshVertex>& out);
+                          std::vector<MeshVertex>& out, std::size_t limit = static_cast<std::size_t>(-1));
 
   /// Appends kVerticesPerArrow vertices (triangles, counter-clockwise from outside); nothing for
   /// a zero-length arrow.

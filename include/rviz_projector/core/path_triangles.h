@@ -3,6 +3,7 @@
 // enough). What ProjectedPath hands to its two meshes, and what the benchmarks measure.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "rviz_projector/core/mesh_vertex.h"
@@ -21,9 +22,16 @@ public:
     Solid,  ///< ArrowSolid: shaded 3D arrows for rviz's main view
   };
 
+  /// Solid arrows are 240 vertices each (a flat one is 9): at most this many are built, the ones
+  /// nearest the destination, so a long path or a tiny spacing cannot make a gigabyte mesh.
+  static constexpr std::size_t kMaxSolidArrows = 10000;
+
   /// Rebuilds the triangles for `path` with the arrow and circle sizes of `parameters`; only the
   /// arrow buffer of `style` is filled, the other one is emptied.
   void build(const SpacedPath& path, const SpacingParameters& parameters, ArrowStyle style);
+
+  /// Arrows of the last build not drawn because of kMaxSolidArrows (0 for Flat).
+  std::size_t arrowsLeftOut() const { return arrows_left_out_; }
 
   /// Flat arrow triangles (ArrowOutline::kVerticesPerArrow vertices per arrow), style Flat.
   const std::vector<Vec2>& flatArrows() const { return flat_arrows_; }
@@ -36,5 +44,6 @@ private:
   std::vector<Vec2> flat_arrows_;
   std::vector<MeshVertex> solid_arrows_;
   std::vector<Vec2> destination_;
+  std::size_t arrows_left_out_ = 0;
 };
 }  // namespace rviz_projector
