@@ -355,6 +355,7 @@ void ProjectedPathDisplay::redraw()
     arrow_mesh_->setFlatTriangles(triangles_.flatArrows(), height + kArrowLift, arrow_colour);
   }
   circle_mesh_->setFlatTriangles(triangles_.destination(), height, circle_colour);
+  ++mesh_builds_;
   ProjectionChangeCounter::bump();
   context_->queueRender();
 }

@@ -138,6 +138,19 @@ TEST_F(ProjectedPathTest, ArrowsLandAtTheirPositionsInTheFixedFrame)
   EXPECT_EQ(s.text.toStdString(), "6 arrows on 3.05 m of path");
 }
 
+TEST_F(ProjectedPathTest, MeshesAreBuiltOncePerPathNotPerFrame)
+{
+  publishAndWait(straightPath("odom", 3.05), 6);
+  const std::size_t builds = display_->meshBuilds();
+  spinFor(0.5);  // rviz updates and renders its view about 15 times
+  rviz_->renderMainView();
+  EXPECT_EQ(display_->meshBuilds(), builds) << "rebuilt without a new path or property change";
+  display_->subProp("Arrow color")->setValue(QColor(0, 0, 255));
+  EXPECT_EQ(display_->meshBuilds(), builds + 1);
+  spinFor(0.3);
+  EXPECT_EQ(display_->meshBuilds(), builds + 1);
+}
+
 TEST_F(ProjectedPathTest, RenderedTopDownViewShowsArrowsAndCircle)
 {
   publishAndWait(straightPath("odom", 3.05), 6);

@@ -44,6 +44,8 @@ public:
   /// Triangles in the arrow mesh and the circle mesh.
   std::size_t arrowTriangleCount() const;
   std::size_t circleTriangleCount() const;
+  /// How often the meshes were rebuilt: once per new path or property change, never per frame.
+  std::size_t meshBuilds() const { return mesh_builds_; }
 
 protected:
   void onInitialize() override;
@@ -89,6 +91,7 @@ private:
   nav_msgs::Path::ConstPtr last_msg_;
   std::size_t dropped_poses_ = 0;
   PathTriangles triangles_;  // buffers kept between paths
+  std::size_t mesh_builds_ = 0;
   std::unique_ptr<FloorMesh> arrow_mesh_;
   std::unique_ptr<FloorMesh> circle_mesh_;
 };
