@@ -13,37 +13,37 @@ import sys
 
 PIPELINES = []  # in the order they appear in the results
 
-# (phase, metric, label, unit format)
+# (metric, label, unit format) rows shared by the sections.
+RVIZ_CPU = [
+    ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
+    ("cpu.rviz", "  rviz", "%.2f"),
+    ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
+    ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
+    ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
+    ("cpu.image_view", "  image_view", "%.2f"),
+]
+MACHINE_LOAD = [
+    ("cpu.others", "  (other processes on the machine)", "%.2f"),
+    ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
+]
+
+# (title, phase, [(metric, label, unit format)])
 SECTIONS = [
     ("Robot driving (demo scene)", "drive", [
         ("fps", "frames/s delivered to the output window", "%.1f"),
         ("draws_per_s", "  draws/s reaching the window (changed or not)", "%.1f"),
-        ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
-        ("cpu.rviz", "  rviz", "%.2f"),
-        ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
-        ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
-        ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
-        ("cpu.image_view", "  image_view", "%.2f"),
+    ] + RVIZ_CPU + [
         ("cpu.demo", "  demo_navigation", "%.3f"),
         ("cpu.xorg", "  X server", "%.3f"),
         ("cpu.probe", "  (probe, not counted)", "%.3f"),
-        ("cpu.others", "  (other processes on the machine)", "%.2f"),
-        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
-    ]),
+    ] + MACHINE_LOAD),
     ("Robot stopped, same plan (nothing changing)", "idle", [
         ("fps", "frames/s delivered (content changes)", "%.1f"),
         ("draws_per_s", "  draws/s reaching the window", "%.1f"),
-        ("cpu.total", "CPU, all pipeline processes [cores]", "%.2f"),
-        ("cpu.rviz", "  rviz", "%.2f"),
-        ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
-        ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
-        ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
-        ("cpu.image_view", "  image_view", "%.2f"),
+    ] + RVIZ_CPU + [
         ("cpu.demo", "  demo_navigation (stopped)", "%.3f"),
         ("cpu.xorg", "  X server", "%.3f"),
-        ("cpu.others", "  (other processes on the machine)", "%.2f"),
-        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
-    ]),
+    ] + MACHINE_LOAD),
     ("Path to photon (new path -> first changed pixel of the output window)", None, [
         ("latency:latency_ms", "45-pose path [ms]", "%.1f"),
         ("latency100k:latency_ms", "100,000-pose path [ms]", "%.1f"),
@@ -55,9 +55,7 @@ SECTIONS = [
         ("cpu.rviz", "  rviz", "%.2f"),
         ("cpu.rviz.main", "    main thread", "%.2f"),
         ("cpu.rviz.llvmpipe", "    llvmpipe threads", "%.2f"),
-        ("cpu.others", "  (other processes on the machine)", "%.2f"),
-        ("cpu.steal", "  (hypervisor steal: CPU time this VM did not get)", "%.2f"),
-    ]),
+    ] + MACHINE_LOAD),
 ]
 
 
