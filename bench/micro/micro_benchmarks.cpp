@@ -183,10 +183,7 @@ void BM_PathUpdate(benchmark::State& state)
   std::size_t arrow_count = 0;
   for (auto _ : state)
   {
-    const geometry_msgs::TransformStamped t = tf.lookupTransform("map", path.header.frame_id, ros::Time(0));
-    const auto& q = t.transform.rotation;
-    const auto& v = t.transform.translation;
-    const RigidTransform to_fixed = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{v.x, v.y, v.z});
+    const RigidTransform to_fixed = toRigidTransform(tf.lookupTransform("map", path.header.frame_id, ros::Time(0)).transform);
     pathToFloorPoints(path, to_fixed, floor_points);
     const SpacedPath& spaced = spacer.space(floor_points);
     triangles.build(spaced, parameters, PathTriangles::ArrowStyle::Flat);

@@ -32,6 +32,13 @@ std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& 
   return dropped;
 }
 
+RigidTransform toRigidTransform(const geometry_msgs::Transform& transform)
+{
+  const geometry_msgs::Quaternion& q = transform.rotation;
+  const geometry_msgs::Vector3& v = transform.translation;
+  return RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{v.x, v.y, v.z});
+}
+
 LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info)
 {
   LensCalibration c;

@@ -207,11 +207,9 @@ private:
     {
       try
       {
-        const geometry_msgs::TransformStamped t = tf_buffer_->lookupTransform(
-            target_frame_, msg->header.frame_id, msg->header.stamp, ros::Duration(transform_timeout_));
-        const geometry_msgs::Quaternion& q = t.transform.rotation;
-        const geometry_msgs::Vector3& v = t.transform.translation;
-        to_target = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{v.x, v.y, v.z});
+        to_target = toRigidTransform(tf_buffer_->lookupTransform(target_frame_, msg->header.frame_id,
+                                                                 msg->header.stamp, ros::Duration(transform_timeout_))
+                                         .transform);
       }
       catch (const tf2::TransformException& e)
       {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Transform.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
 
@@ -24,6 +25,9 @@ bool isFinitePose(const geometry_msgs::Pose& pose);
  */
 std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& path_to_target,
                               std::vector<Vec2>& out);
+
+/// A tf transform (e.g. from tf2's lookupTransform) as a core transform.
+RigidTransform toRigidTransform(const geometry_msgs::Transform& transform);
 
 LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info);
 }  // namespace rviz_projector
