@@ -105,7 +105,7 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
       "Style", "Flat",
       "Flat: unlit filled outlines in exactly the chosen colours (what a projector should show). "
       "3D: shaded shaft cylinders and head cones.",
-      this, SLOT(updateStyle()), this);
+      this, SLOT(updateAppearance()), this);
   style_property_->addOption("Flat", kFlat);
   style_property_->addOption("3D", kSolid);
 }
@@ -255,11 +255,6 @@ void ProjectedPathDisplay::updateSpacing()
 }
 
 void ProjectedPathDisplay::updateAppearance()
-{
-  redraw();
-}
-
-void ProjectedPathDisplay::updateStyle()
 {
   redraw();
 }

@@ -60,8 +60,7 @@ protected:
 
 private Q_SLOTS:
   void updateSpacing();
-  void updateAppearance();
-  void updateStyle();
+  void updateAppearance();  // colours, alpha, height, style: same arrows, new meshes
 
 private:
   SpacingParameters spacingParameters() const;
