@@ -113,7 +113,7 @@ ProjectorCameraDisplay::ProjectorCameraDisplay()
       "Full screen", true,
       "Full screen on the output screen (Esc leaves it). Off: a normal window, e.g. for setting up on a "
       "laptop. With a single screen the window always opens windowed, never covering rviz.",
-      this, SLOT(updateFullScreen()), this);
+      this, SLOT(updateOutput()), this);
   background_property_ = new rviz::ColorProperty("Background color", QColor(0, 0, 0),
                                                  "Colour where nothing is drawn. Black projects no light.", this,
                                                  SLOT(updateCameraSettings()), this);
@@ -582,12 +582,19 @@ QScreen* ProjectorCameraDisplay::chooseScreen(QString& why) const
   return rviz_screen ? rviz_screen : screens.front();
 }
 
+bool ProjectorCameraDisplay::wantsFullScreen() const
+{
+  return full_screen_property_->getBool() && QGuiApplication::screens().size() >= 2;
+}
+
+int ProjectorCameraDisplay::wantedFsaa() const
+{
+  return anti_aliasing_property_->getBool() ? 4 : 0;
+}
+
 void ProjectorCameraDisplay::createWindow()
 {
-  const bool single_screen = QGuiApplication::screens().size() < 2;
-  const bool full_screen = full_screen_property_->getBool() && !single_screen;
-  window_ = std::make_unique<ProjectorOutputWindow>("Projector: " + getName(), full_screen,
-                                                    anti_aliasing_property_->getBool() ? 4 : 0);
+  window_ = std::make_unique<ProjectorOutputWindow>("Projector: " + getName(), wantsFullScreen(), wantedFsaa());
   Ogre::RenderWindow* render_window = window_->renderWindow();
   render_window->addListener(this);
   viewport_ = render_window->addViewport(camera_);
@@ -617,20 +624,6 @@ void ProjectorCameraDisplay::destroyWindow()
   window_.reset();
 }
 
-void ProjectorCameraDisplay::updateFullScreen()
-{
-  if (!window_)
-  {
-    return;
-  }
-  destroyWindow();  // frameless or framed is fixed per native window
-  if (isEnabled())
-  {
-    createWindow();
-    updateOutput();
-  }
-}
-
 void ProjectorCameraDisplay::updateOutput()
 {
   if (!window_ || !isEnabled())
@@ -640,10 +633,9 @@ void ProjectorCameraDisplay::updateOutput()
   QString why;
   QScreen* screen = chooseScreen(why);
   const bool single_screen = QGuiApplication::screens().size() < 2;
-  const bool want_full_screen = full_screen_property_->getBool() && !single_screen;
-  if (want_full_screen != window_->isFullScreenOn() ||
-      window_->fsaa() != (anti_aliasing_property_->getBool() ? 4 : 0))
+  if (wantsFullScreen() != window_->isFullScreenOn() || window_->fsaa() != wantedFsaa())
   {
+    // Frameless or framed, and the multisampling, are fixed per native window: a new one.
     destroyWindow();
     createWindow();
   }

@@ -101,7 +101,6 @@ private Q_SLOTS:
   void updateOutput();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
   void checkMainViewCost();
-  void updateFullScreen();
   void updateCameraSettings();
   void updateFrameRate();
   void onFootprintPropertyChanged();
@@ -118,6 +117,10 @@ private:
   void unsubscribe();
   void cameraInfoCallback(const sensor_msgs::CameraInfo::ConstPtr& msg);
   void applyCameraInfo();
+  /// Full screen as the property asks, unless there is only one screen (never cover rviz).
+  bool wantsFullScreen() const;
+  /// Multisampling of the output window: 4x with Anti-aliasing, none without.
+  int wantedFsaa() const;
   void createWindow();
   void destroyWindow();
   QScreen* chooseScreen(QString& why) const;
