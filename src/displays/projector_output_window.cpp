@@ -17,6 +17,9 @@ ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_scr
 {
   setWindowTitle(title);
   setAttribute(Qt::WA_DeleteOnClose, false);
+  // Not a window that keeps rviz alive: when rviz's main window closes (Ctrl+Q, File -> Quit, its
+  // close button, SIGINT/SIGTERM through rviz's own shutdown), the application must quit.
+  setAttribute(Qt::WA_QuitOnClose, false);
   QPalette black = palette();
   black.setColor(QPalette::Window, Qt::black);
   setPalette(black);
@@ -35,13 +38,12 @@ Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
   return render_widget_->renderWindow();
 }
 
-void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size, bool corner)
+void ProjectorOutputWindow::moveToScreen(QScreen* screen)
 {
   if (!windowHandle())
   {
     create();
   }
-  // Qt needs the native window on the target screen before it goes full screen there.
   if (screen && windowHandle() && windowHandle()->screen() != screen)
   {
     if (isFullScreen())
@@ -50,30 +52,26 @@ void ProjectorOutputWindow::present(QScreen* screen, const QSize& image_size, bo
     }
     windowHandle()->setScreen(screen);
   }
-  if (full_screen_ && screen)
+}
+
+void ProjectorOutputWindow::showFullScreenOn(QScreen* screen)
+{
+  moveToScreen(screen);
+  setCursor(Qt::BlankCursor);
+  if (screen)
   {
-    setCursor(Qt::BlankCursor);
     setGeometry(screen->geometry());
-    showFullScreen();
   }
-  else
-  {
-    unsetCursor();
-    QSize size = image_size.isValid() ? image_size : QSize(1280, 800);
-    if (screen)
-    {
-      const QRect available = screen->availableGeometry();
-      size.scale(size.boundedTo(available.size() * (corner ? 0.5 : 0.8)), Qt::KeepAspectRatio);
-      const QPoint origin = corner ? available.bottomRight() - QPoint(size.width() - 1, size.height() - 1)
-                                   : available.center() - QPoint(size.width() / 2, size.height() / 2);
-      setGeometry(QRect(origin, size));
-    }
-    else
-    {
-      resize(size);
-    }
-    showNormal();
-  }
+  showFullScreen();
+  raise();
+}
+
+void ProjectorOutputWindow::showWindowedOn(QScreen* screen, const QRect& geometry)
+{
+  moveToScreen(screen);
+  unsetCursor();
+  setGeometry(geometry);
+  showNormal();
   raise();
 }
 

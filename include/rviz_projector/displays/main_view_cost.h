@@ -7,6 +7,11 @@
 
 #include <string>
 
+namespace rviz
+{
+class DisplayContext;
+}
+
 namespace rviz_projector
 {
 /// True for OpenGL renderers that rasterise on the CPU (Mesa llvmpipe/softpipe/swr, Windows GDI).
@@ -15,4 +20,6 @@ bool isSoftwareRenderer(const std::string& gl_renderer);
 /// A warning for the user when the main view multisamples (`fsaa` samples, 0 or 1 = none) on a
 /// software renderer; empty when it does not.
 std::string mainViewCostWarning(unsigned int fsaa, const std::string& gl_renderer);
+/// The same for rviz's running main view (empty when rviz is embedded without one).
+std::string mainViewCostWarning(rviz::DisplayContext& context);
 }  // namespace rviz_projector

@@ -1,6 +1,15 @@
 // rviz display "rviz_projector/ProjectorCamera": renders the scene through the projector's lens
-// (CameraInfo, pinhole model of P) from its pose (tf) straight into a full-screen window on the
-// projector's screen. A thin adapter: PinholeModel does the maths, ProjectorOutputWindow the window.
+// (CameraInfo) from its pose (tf) straight into a full-screen window on the projector's screen.
+// An orchestrator: it owns the properties and statuses and wires the parts together.
+//   PinholeModel (core)        lens from CameraInfo, OpenGL projection
+//   ProjectorView              the OGRE camera at the projector's pose, through its lens
+//   ProjectorOutput            output window, render window, viewport, screens, exact letterbox
+//   ProjectionGate             whether a frame is needed; Visibility ticks by display identity
+//   ProjectorImagePublisher    optional Image + matching CameraInfo
+//   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
+//   lookupProjectorPose        the projector's pose from tf
+//   FramePacer (core)          frame deadlines at the Frame rate limit / screen refresh
+// See README "Architecture" for how one frame flows.
 #pragma once
 
 #ifndef Q_MOC_RUN
@@ -12,40 +21,34 @@
 #include <vector>
 
 #include <OgreRenderTargetListener.h>
+#include <QElapsedTimer>
 #include <QTimer>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <rviz/display.h>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "rviz_projector/core/frame_pacer.h"
 #include "rviz_projector/core/pinhole_model.h"
-#include "rviz_projector/core/vec2.h"
+#include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/projector_camera_properties.h"
 #endif
 
-namespace Ogre
-{
-class Camera;
-class SceneNode;
-class Viewport;
-}  // namespace Ogre
-class QScreen;
 
 namespace rviz
 {
-class BoolProperty;
-class ColorProperty;
 class DisplayGroupVisibilityProperty;
-class EnumProperty;
-class FloatProperty;
-class IntProperty;
-class RosTopicProperty;
-class StringProperty;
 }  // namespace rviz
 
 namespace rviz_projector
 {
-class FloorMesh;
-class ProjectorFootprintVisual;
+class ProjectionGate;
+class ProjectorFloorOverlay;
+class ProjectorImagePublisher;
+class ProjectorOutput;
 class ProjectorOutputWindow;
+class ProjectorView;
+struct OutputResult;
 
 class ProjectorCameraDisplay : public rviz::Display, public Ogre::RenderTargetListener
 {
@@ -57,29 +60,26 @@ public:
   ProjectorCameraDisplay();
   ~ProjectorCameraDisplay() override;
 
+  /// rviz's Reset: statuses are cleared, then every problem that still holds is raised again.
   void reset() override;
   /// Loads the config, then reports values that were clamped or replaced (a "Config" warning).
   void load(const rviz::Config& config) override;
   void setTopic(const QString& topic, const QString& datatype) override;
-  /// Statuses are set every frame; these forward only actual changes to rviz (each call posts an
-  /// event and repaints the Displays panel).
+  /// Statuses are evaluated every frame; these forward only actual changes to rviz (each call posts
+  /// an event and repaints the Displays panel).
   void setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text) override;
   void deleteStatus(const QString& name) override;
   void clearStatuses() override;
 
   /// Frames skipped because nothing the projector shows had changed.
   std::uint64_t framesSkipped() const { return frames_skipped_; }
-  /// Renders a frame and copies it (RGB, rows top down, whole window) before it is shown.
-  bool grabFrame(std::vector<std::uint8_t>& rgb, unsigned& width, unsigned& height);
-  /// The output window (nullptr while the display has never been enabled).
-  ProjectorOutputWindow* outputWindow() const { return window_.get(); }
-  /// The lens in use; valid() is false until a usable CameraInfo arrived.
-  const PinholeModel& lens() const { return lens_; }
-  bool hasLens() const { return has_lens_; }
-  /// Viewport in window pixels (left, top, width, height) the image is drawn into.
-  void viewportPixels(int& left, int& top, int& width, int& height) const;
   /// Frames rendered into the output window so far.
   std::uint64_t framesRendered() const { return frames_rendered_; }
+  /// The output window (nullptr while none exists).
+  ProjectorOutputWindow* outputWindow() const;
+  /// The lens in use; valid only when hasLens().
+  const PinholeModel& lens() const { return lens_; }
+  bool hasLens() const { return has_lens_; }
   /// The visibility bit used by the projector view (0 when none could be allocated).
   std::uint32_t visibilityBit() const { return vis_bit_; }
 
@@ -93,15 +93,14 @@ protected:
   void preRenderTargetUpdate(const Ogre::RenderTargetEvent& event) override;
 
 public Q_SLOTS:
-  /// Renders the projector view now (the timer does this at the frame rate limit).
+  /// Renders the projector view now if anything it shows changed (the frame timer calls this).
   void renderNow();
 
 private Q_SLOTS:
-  void updateTopic();
+  void onFrameTimer();
+  void resubscribe();
   void updateOutput();
-  /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
-  void checkMainViewCost();
-  void updateCameraSettings();
+  void applyProjection();
   void updateFrameRate();
   void onFootprintPropertyChanged();
   void updateTestPattern();
@@ -110,96 +109,56 @@ private Q_SLOTS:
   void onScreensChanged();
   void onLeaveFullScreenRequested();
   void onWindowClosed();
-  void onDisplayAdded(rviz::Display* display);
 
 private:
   void subscribe();
   void unsubscribe();
   void cameraInfoCallback(const sensor_msgs::CameraInfo::ConstPtr& msg);
+  /// Applies the last CameraInfo (lens, statuses); also re-raises its problems after a reset.
   void applyCameraInfo();
-  /// Full screen as the property asks, unless there is only one screen (never cover rviz).
-  bool wantsFullScreen() const;
-  /// Multisampling of the output window: 4x with Anti-aliasing, none without.
-  int wantedFsaa() const;
-  void createWindow();
-  void destroyWindow();
-  QScreen* chooseScreen(QString& why) const;
+  void noCameraInfoStatus();
+  /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
+  void checkMainViewCost();
+  void showOutputResult(const OutputResult& result);
   /// Moves the camera to the projector's latest tf pose; false (with a status) when unavailable.
   bool updateCameraPose();
-  void updateViewport();
   void updateFootprint();
-  void publishImage();
-  /// Follows tf and the window: camera pose, footprint, viewport. False when nothing can be drawn.
+  /// Follows tf, the lens and the window; false when there is no window to draw into.
   bool prepareFrame();
   void updateFootprintVisible();
-  /// Renders into the back buffer; `swap` shows it.
-  void drawFrame(bool swap);
-  /// Whether a display that is not from this package is shown in the projector view (its changes
-  /// are not announced, so the view must render at its frame rate).
-  bool showsForeignDisplays() const;
-  /// Hash of the Visibility property's ticks and the displays' enabled states.
-  std::uint64_t visibilitySignature() const;
   /// Something this display itself draws or how it draws changed: render again.
-  void markChanged();
+  void markChanged() { ++own_changes_; }
   std::string projectorFrame() const;
-  void setDefaultVisibility(rviz::Property* visibility_child, rviz::Display* display);
+  void setTransformStatus(int state, const QString& text);
 
-  rviz::RosTopicProperty* topic_property_;
-  rviz::StringProperty* frame_property_;
-  rviz::EnumProperty* screen_property_;
-  rviz::BoolProperty* full_screen_property_;
-  rviz::ColorProperty* background_property_;
-  rviz::FloatProperty* near_clip_property_;
-  rviz::FloatProperty* far_clip_property_;
-  rviz::IntProperty* frame_rate_property_;
-  rviz::BoolProperty* anti_aliasing_property_;
+  ProjectorCameraProperties props_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
-  rviz::BoolProperty* footprint_property_;
-  rviz::BoolProperty* test_pattern_property_;
-  rviz::BoolProperty* image_output_property_;
-  rviz::StringProperty* image_topic_property_;
-  rviz::FloatProperty* image_rate_property_;
 
+  // CameraInfo comes through a queue of this display's own, drained by its frame timer: prompt,
+  // and never a reason to spin rviz's global queue (whose callbacks may delete this display).
+  ros::CallbackQueue info_queue_;
+  ros::NodeHandle info_nh_;
   ros::Subscriber info_sub_;
   sensor_msgs::CameraInfo::ConstPtr last_info_;
   PinholeModel lens_;
   bool has_lens_ = false;
   bool pose_ok_ = false;
+  RigidTransform pose_;       ///< optical frame -> fixed frame, when pose_ok_
+  int transform_state_ = -1;  ///< which Transform status is shown (avoids rebuilding its text)
   std::string info_frame_;
 
-  std::unique_ptr<ProjectorOutputWindow> window_;
-  Ogre::Camera* camera_ = nullptr;
-  Ogre::SceneNode* camera_node_ = nullptr;
-  Ogre::Viewport* viewport_ = nullptr;
+  std::unique_ptr<ProjectionGate> gate_;
+  std::unique_ptr<ProjectorOutput> output_;
+  std::unique_ptr<ProjectorImagePublisher> image_publisher_;
+  std::unique_ptr<ProjectorView> view_;
   std::uint32_t vis_bit_ = 0;
-  QTimer render_timer_;
+  QTimer frame_timer_;
+  QElapsedTimer clock_;
+  FramePacer pacer_;
   std::uint64_t frames_rendered_ = 0;
   std::uint64_t frames_skipped_ = 0;
-
-  /// What the last rendered frame depended on; an identical state needs no new frame.
-  struct FrameState
-  {
-    std::array<float, 7> pose{};  // position, orientation (w, x, y, z)
-    std::uint64_t changes = 0;    // ProjectionChangeCounter + own changes
-    std::uint64_t visibility = 0;  // which displays the Visibility property shows
-    int viewport[4] = {0, 0, 0, 0};
-    bool drawable = false;
-    bool operator==(const FrameState& o) const;
-  };
-  FrameState last_frame_;
-  bool have_last_frame_ = false;
   std::uint64_t own_changes_ = 0;
-  std::array<float, 7> footprint_key_{};  // camera pose the footprint was last computed for
-  std::uint64_t footprint_changes_ = ~0ull;
   std::map<QString, std::pair<int, QString>> status_cache_;
-
-  std::unique_ptr<ProjectorFootprintVisual> footprint_visual_;
-  std::unique_ptr<FloorMesh> grid_mesh_;
-  std::vector<Vec2> grid_triangles_;
-
-  ros::Publisher image_pub_;
-  ros::Publisher image_info_pub_;
-  ros::WallTime last_image_time_;
-  std::vector<std::uint8_t> image_buffer_;
+  std::unique_ptr<ProjectorFloorOverlay> overlay_;
 };
 }  // namespace rviz_projector

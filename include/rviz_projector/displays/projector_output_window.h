@@ -28,18 +28,16 @@ public:
 
   Ogre::RenderWindow* renderWindow() const;
 
-  /**
-   * Shows the window on `screen`: full screen (cursor hidden) if built so, else as a normal window
-   * of `image_size` shrunk to fit the screen, centred, or with `corner` shrunk to at most half
-   * the screen in its bottom-right corner (when it shares the screen with rviz). Moves to the
-   * screen before going full screen.
-   */
-  void present(QScreen* screen, const QSize& image_size, bool corner = false);
+  /// Full screen on `screen` (cursor hidden); moves there first (Qt needs the native window on
+  /// the target screen before it goes full screen there).
+  void showFullScreenOn(QScreen* screen);
+  /// A normal window on `screen` with this geometry.
+  void showWindowedOn(QScreen* screen, const QRect& geometry);
   bool isFullScreenOn() const { return full_screen_; }
   int fsaa() const { return fsaa_; }
 
 Q_SIGNALS:
-  /// The user pressed Esc in full screen.
+  /// The user pressed Esc in full screen (connect queued: the window may be rebuilt).
   void leaveFullScreenRequested();
   /// The user closed the window (window manager close button, Alt+F4).
   void closedByUser();
@@ -49,6 +47,8 @@ protected:
   void closeEvent(QCloseEvent* event) override;
 
 private:
+  void moveToScreen(QScreen* screen);
+
   ProjectorRenderWidget* render_widget_;
   bool full_screen_ = false;
   int fsaa_ = 0;

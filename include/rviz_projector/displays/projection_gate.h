@@ -1,0 +1,79 @@
+// One part of ProjectorCameraDisplay: decides whether the projector view must render a new frame
+// (what changed since the last one: pose, lens, scene, visibility, window), and keeps the Visibility
+// ticks attached to the displays they belong to (by identity: moving a display in the Displays
+// list, or removing one above it, never shifts ticks to other displays).
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <array>
+#include <cstdint>
+#include <map>
+
+#include <QObject>
+
+#include "rviz_projector/core/letterbox.h"
+#endif
+
+namespace rviz
+{
+class Display;
+class DisplayGroup;
+class DisplayGroupVisibilityProperty;
+class Property;
+}  // namespace rviz
+
+namespace rviz_projector
+{
+/// Everything a rendered projector frame depends on; an identical state needs no new frame.
+struct FrameState
+{
+  std::array<float, 7> pose{};   ///< position, orientation (w, x, y, z)
+  std::uint64_t changes = 0;     ///< ProjectionChangeCounter + the display's own changes
+  std::uint64_t visibility = 0;  ///< ProjectionGate::visibilitySignature()
+  PixelRect image;               ///< where the image is drawn in the window
+  bool drawable = false;         ///< lens and pose available
+  bool operator==(const FrameState& o) const;
+};
+
+class ProjectionGate : public QObject
+{
+  Q_OBJECT
+public:
+  /// Watches `group` (rviz's root display group) for `owner`. Create it before the Visibility
+  /// property: it must hear a display's removal before the property forgets that display's tick.
+  ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner);
+
+  /// The owner's Visibility property, once created; existing displays get their default ticks.
+  void attach(rviz::DisplayGroupVisibilityProperty* visibility);
+
+  /// Whether `state` needs a new frame: it differs from the last frame rendered, or the view shows
+  /// displays that do not announce their changes (not from this package), or the view was
+  /// invalidated. When true, `state` is recorded as rendered.
+  bool needsFrame(const FrameState& state);
+  /// The next frame renders whatever the state (a new window, a read-back).
+  void invalidate() { have_last_ = false; }
+
+  /// Hash of the displays shown in the projector view (identity, enabled, tick); no allocation.
+  std::uint64_t visibilitySignature() const;
+  /// Whether a display not from this package is shown in the projector view.
+  bool showsForeignDisplays() const;
+  /// The Visibility tick of `display` (nullptr when it has none).
+  rviz::Property* tickOf(const rviz::Display* display) const;
+  /// Default tick of a new display: this package's displays are projected, others are not.
+  static bool shownByDefault(const rviz::Display* display);
+
+private Q_SLOTS:
+  void onDisplayAdded(rviz::Display* display);
+  void onDisplayRemoved(rviz::Display* display);
+  void onDisplayDestroyed(QObject* display);
+
+private:
+  rviz::DisplayGroup* group_;
+  rviz::Display* owner_;
+  rviz::DisplayGroupVisibilityProperty* visibility_ = nullptr;
+  /// Ticks of displays taken out of the group: a display moved in the list comes back with its tick.
+  std::map<const QObject*, bool> taken_out_;
+  FrameState last_;
+  bool have_last_ = false;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,98 @@
+#include "rviz_projector/displays/projector_camera_properties.h"
+
+#include <ros/message_traits.h>
+#include <rviz/config.h>
+#include <rviz/display.h>
+#include <rviz/properties/bool_property.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/enum_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/int_property.h>
+#include <rviz/properties/ros_topic_property.h>
+#include <rviz/properties/string_property.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "rviz_projector/displays/config_check.h"
+#include "rviz_projector/displays/projector_camera_display.h"
+
+namespace rviz_projector
+{
+ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
+{
+  topic = new rviz::RosTopicProperty(
+      "Topic", ProjectorCameraDisplay::kDefaultTopic, QString::fromStdString(ros::message_traits::datatype<sensor_msgs::CameraInfo>()),
+      "sensor_msgs/CameraInfo of the projector: resolution and lens (P, or K when P is all zero).", display,
+      SLOT(resubscribe()), display);
+  frame = new rviz::StringProperty(
+      "Frame", "",
+      "tf frame of the projector's optical frame (z forward, x right, y down). Empty: the CameraInfo "
+      "header's frame_id.",
+      display, SLOT(applyProjection()), display);
+  screen = new rviz::EnumProperty(
+      "Output screen", "Automatic",
+      "Screen the projector is plugged into (its name, e.g. HDMI-1). Automatic: a screen of rviz's desktop other than "
+      "rviz's own that no other projector uses.", display,
+      SLOT(updateOutput()), display);
+  QObject::connect(screen, SIGNAL(requestOptions(EnumProperty*)), display, SLOT(fillScreenOptions()));
+  full_screen = new rviz::BoolProperty(
+      "Full screen", true,
+      "Full screen on the output screen (Esc in the window turns this off). Off: a normal window, e.g. for setting up on a "
+      "laptop. With a single screen the window always opens windowed, never covering rviz.",
+      display, SLOT(updateOutput()), display);
+  background = new rviz::ColorProperty("Background color", QColor(0, 0, 0),
+                                                 "Colour where nothing is drawn. Black projects no light.", display,
+                                                 SLOT(applyProjection()), display);
+  near_clip = new rviz::FloatProperty("Near clip", 0.05f, "Nearest distance drawn, metres.", display,
+                                                SLOT(applyProjection()), display);
+  near_clip->setMin(0.001f);
+  near_clip->setMax(100.0f);
+  far_clip = new rviz::FloatProperty("Far clip", 50.0f, "Farthest distance drawn, metres.", display,
+                                               SLOT(applyProjection()), display);
+  far_clip->setMin(0.01f);
+  far_clip->setMax(10000.0f);
+  frame_rate = new rviz::IntProperty(
+      "Frame rate limit", 60, "Most frames per second rendered into the output window; paced to the output screen's refresh when "
+      "it is lower. Frames are rendered only when something shown changed.",
+      display, SLOT(updateFrameRate()), display);
+  frame_rate->setMin(1);
+  frame_rate->setMax(240);
+  anti_aliasing = new rviz::BoolProperty(
+      "Anti-aliasing", false,
+      "Smooth edges with 4x multisampling. Off by default: projected arrows are solid shapes, and on "
+      "software or integrated graphics multisampling costs most of the frame time.",
+      display, SLOT(updateOutput()), display);
+  footprint = new rviz::BoolProperty(
+      "Footprint in main view", true,
+      "Draw the projector's frustum and the area it lights on the floor (z = 0) in rviz's main view.", display,
+      SLOT(onFootprintPropertyChanged()), display);
+  test_pattern = new rviz::BoolProperty(
+      "Test pattern", false,
+      "Project a metric grid on the floor: 10 cm cells, bold lines every metre, a cross at the fixed "
+      "frame's origin. Check the calibration with a tape measure.",
+      display, SLOT(updateTestPattern()), display);
+  image_output = new rviz::BoolProperty(
+      "Image output", false,
+      "Also publish the rendered view as sensor_msgs/Image (+ CameraInfo) for remote monitoring or recording.",
+      display, SLOT(updateImageOutput()), display);
+  image_topic = new rviz::StringProperty("Image topic", "/projector/rendered/image",
+                                                   "Topic of the published image; CameraInfo goes to the "
+                                                   "sibling topic camera_info.",
+                                                   image_output, SLOT(updateImageOutput()), display);
+  image_rate = new rviz::FloatProperty("Image rate", 10.0f, "Images published per second.",
+                                                 image_output, SLOT(updateImageOutput()), display);
+  image_rate->setMin(0.1f);
+  image_rate->setMax(120.0f);
+}
+
+QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
+{
+  ConfigCheck check;
+  for (rviz::Property* p : {static_cast<rviz::Property*>(near_clip), static_cast<rviz::Property*>(far_clip),
+                            static_cast<rviz::Property*>(frame_rate)})
+  {
+    check.number(config.mapGetChild(p->getName()), p);
+  }
+  check.number(config.mapGetChild(image_output->getName()).mapGetChild(image_rate->getName()), image_rate);
+  return check.report();
+}
+}  // namespace rviz_projector

@@ -1,0 +1,72 @@
+#include "rviz_projector/displays/projector_view.h"
+
+#include <cstdio>
+
+#include <OgreCamera.h>
+#include <OgreMatrix4.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+
+#include "rviz_projector/displays/ogre_name.h"
+
+namespace rviz_projector
+{
+ProjectorView::ProjectorView(Ogre::SceneManager* scene_manager)
+  : scene_manager_(scene_manager), camera_(scene_manager->createCamera(uniqueOgreName("rviz_projector_camera_")))
+{
+  node_ = scene_manager_->getRootSceneNode()->createChildSceneNode();
+  node_->attachObject(camera_);
+}
+
+ProjectorView::~ProjectorView()
+{
+  node_->detachAllObjects();
+  scene_manager_->destroySceneNode(node_);
+  scene_manager_->destroyCamera(camera_);
+}
+
+std::string ProjectorView::setProjection(const PinholeModel* lens, double near_clip, double far_clip)
+{
+  std::string warning;
+  if (!(far_clip > near_clip))
+  {
+    far_clip = near_clip * 1000.0;
+    char text[128];
+    std::snprintf(text, sizeof text, "Far clip must be beyond near clip: using %g m", far_clip);
+    warning = text;
+  }
+  camera_->setNearClipDistance(static_cast<Ogre::Real>(near_clip));
+  camera_->setFarClipDistance(static_cast<Ogre::Real>(far_clip));
+  if (lens)
+  {
+    const auto m = lens->glProjectionMatrix(near_clip, far_clip);
+    Ogre::Matrix4 projection;
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        projection[r][c] = static_cast<Ogre::Real>(m[4 * r + c]);
+      }
+    }
+    camera_->setCustomProjectionMatrix(true, projection);
+  }
+  return warning;
+}
+
+void ProjectorView::setPose(const ProjectorPose& pose)
+{
+  const Vec3& p = pose.optical_to_fixed.translation();
+  // Optical frame (z forward, y down) -> OGRE camera (looks down -z, y up): half turn about x.
+  const Ogre::Quaternion optical(static_cast<Ogre::Real>(pose.qw), static_cast<Ogre::Real>(pose.qx),
+                                 static_cast<Ogre::Real>(pose.qy), static_cast<Ogre::Real>(pose.qz));
+  node_->setPosition(static_cast<Ogre::Real>(p.x), static_cast<Ogre::Real>(p.y), static_cast<Ogre::Real>(p.z));
+  node_->setOrientation(optical * Ogre::Quaternion(Ogre::Degree(180), Ogre::Vector3::UNIT_X));
+}
+
+std::array<float, 7> ProjectorView::poseKey() const
+{
+  const Ogre::Vector3& p = node_->getPosition();
+  const Ogre::Quaternion& q = node_->getOrientation();
+  return {p.x, p.y, p.z, q.w, q.x, q.y, q.z};
+}
+}  // namespace rviz_projector
