@@ -26,4 +26,9 @@ void PathTriangles::build(const SpacedPath& path, const SpacingParameters& param
     DiscOutline(path.destination, parameters.circle_diameter).appendTriangles(destination_);
   }
 }
+
+std::size_t PathTriangles::arrowsDrawn() const
+{
+  return flat_arrows_.size() / ArrowOutline::kVerticesPerArrow + solid_arrows_.size() / ArrowSolid::kVerticesPerArrow;
+}
 }  // namespace rviz_projector

@@ -33,6 +33,8 @@ constexpr float kMinSize = 0.005f;
 constexpr float kMaxSize = 10.0f;
 /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
 constexpr double kArrowLift = 0.001;
+/// How often the private path queue is drained, milliseconds.
+constexpr int kDrainIntervalMs = 5;
 
 rviz::FloatProperty* sizeProperty(const QString& name, float value, const QString& description,
                                   rviz::Property* parent, const char* slot, QObject* receiver)
@@ -110,11 +112,24 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
   style_property_->addOption("3D", kSolid);
 }
 
-ProjectedPathDisplay::~ProjectedPathDisplay() = default;
+ProjectedPathDisplay::~ProjectedPathDisplay()
+{
+  drain_timer_.stop();
+  // The subscription and the tf filter hold the private queue: both go before it does.
+  if (initialized())
+  {
+    unsubscribe();
+    delete tf_filter_;
+    tf_filter_ = nullptr;
+  }
+}
 
 void ProjectedPathDisplay::onInitialize()
 {
+  update_nh_.setCallbackQueue(&path_queue_);  // before the base class creates subscriber and filter
   MFDClass::onInitialize();
+  connect(&drain_timer_, &QTimer::timeout, this, &ProjectedPathDisplay::drainQueue);
+  drain_timer_.start(kDrainIntervalMs);
   // Sees every message before the tf filter holds it back, to say at once why nothing is drawn.
   sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
@@ -206,8 +221,11 @@ void ProjectedPathDisplay::fixedFrameChanged()
   MFDClass::fixedFrameChanged();  // retargets the tf filter and resets the display
   if (last)
   {
-    // Through the tf filter again: drawn as soon as the new fixed frame can be reached.
-    tf_filter_->add(last);
+    // Through the tf filter again, stamped now: drawn as soon as the new fixed frame can be
+    // reached (the old stamp may be older than tf's buffer, and would never pass).
+    auto again = boost::make_shared<nav_msgs::Path>(*last);
+    again->header.stamp = ros::Time::now();
+    tf_filter_->add(again);
   }
 }
 
@@ -246,6 +264,11 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
   have_path_ = true;
   last_msg_ = msg;
   rebuild();
+}
+
+void ProjectedPathDisplay::drainQueue()
+{
+  path_queue_.callAvailable();
 }
 
 void ProjectedPathDisplay::updateSpacing()
@@ -289,6 +312,9 @@ void ProjectedPathDisplay::rebuild()
     return;
   }
   spaced_ = &spacer_.space(floor_points_);
+  redraw();
+  // Counted from the triangles: an invalid (degenerate) arrow is not drawn, so not counted.
+  const std::size_t drawn = triangles_.arrowsDrawn();
   const std::size_t dropped = dropped_poses_ + spaced_->dropped_points;
   if (!spaced_->has_destination)
   {
@@ -299,20 +325,19 @@ void ProjectedPathDisplay::rebuild()
   else if (dropped > 0)
   {
     setStatus(rviz::StatusProperty::Warn, "Path",
-              QString("%1 poses with NaN/Inf values dropped; %2 arrows drawn").arg(dropped).arg(spaced_->arrows.size()));
+              QString("%1 poses with NaN/Inf values dropped; %2 arrows drawn").arg(dropped).arg(drawn));
   }
   else if (spaced_->truncated)
   {
     setStatus(rviz::StatusProperty::Warn, "Path",
               QString("Path too long for the spacing: only the %1 arrows nearest the destination are drawn")
-                  .arg(spaced_->arrows.size()));
+                  .arg(drawn));
   }
   else
   {
     setStatus(rviz::StatusProperty::Ok, "Path",
-              QString("%1 arrows on %2 m of path").arg(spaced_->arrows.size()).arg(spaced_->path_length, 0, 'f', 2));
+              QString("%1 arrows on %2 m of path").arg(drawn).arg(spaced_->path_length, 0, 'f', 2));
   }
-  redraw();
 }
 
 void ProjectedPathDisplay::redraw()

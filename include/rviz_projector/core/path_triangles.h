@@ -30,6 +30,8 @@ public:
   /// arrow buffer of `style` is filled, the other one is emptied.
   void build(const SpacedPath& path, const SpacingParameters& parameters, ArrowStyle style);
 
+  /// Arrows of the last build that have triangles (invalid, degenerate arrows have none).
+  std::size_t arrowsDrawn() const;
   /// Arrows of the last build not drawn because of kMaxSolidArrows (0 for Flat).
   std::size_t arrowsLeftOut() const { return arrows_left_out_; }
 

@@ -6,7 +6,9 @@
 #include <memory>
 #include <vector>
 
+#include <QTimer>
 #include <nav_msgs/Path.h>
+#include <ros/callback_queue.h>
 #include <rviz/message_filter_display.h>
 
 #include "rviz_projector/core/path_spacer.h"
@@ -59,6 +61,8 @@ protected:
   void checkFrame(const nav_msgs::Path::ConstPtr& msg);
 
 private Q_SLOTS:
+  /// Handles this display's own messages (its private queue), promptly and outside rviz's update.
+  void drainQueue();
   void updateSpacing();
   void updateAppearance();  // colours, alpha, height, style: same arrows, new meshes
 
@@ -82,6 +86,11 @@ private:
   rviz::FloatProperty* height_property_;
   rviz::EnumProperty* style_property_;
 
+  // Paths arrive on a queue of this display's own, drained every few milliseconds by its timer:
+  // a new plan reaches the projector without waiting for rviz's next main-view frame, and nobody
+  // spins rviz's global queue from inside a display.
+  ros::CallbackQueue path_queue_;
+  QTimer drain_timer_;
   PathSpacer spacer_;
   const SpacedPath* spaced_;
   SpacedPath empty_;
