@@ -12,13 +12,14 @@ void PathTriangles::build(const SpacedPath& path, const SpacingParameters& param
   {
     ArrowSolid::trianglesOf(path.arrows, parameters.arrow, solid_arrows_, kMaxSolidArrows);
     arrows_left_out_ = path.arrows.size() > kMaxSolidArrows ? path.arrows.size() - kMaxSolidArrows : 0;
-    flat_arrows_.clear();
+    std::vector<Vec2>().swap(flat_arrows_);  // the other style's buffer is not kept
   }
   else
   {
     ArrowOutline::trianglesOf(path.arrows, parameters.arrow, flat_arrows_);
     arrows_left_out_ = 0;
-    solid_arrows_.clear();
+    // Not kept while unused: 10,000 solid arrows take ~60 MB (~115 MB of capacity after growth).
+    std::vector<MeshVertex>().swap(solid_arrows_);
   }
   destination_.clear();
   if (path.has_destination)

@@ -79,3 +79,39 @@ TEST(PathTriangles, SolidArrowsAreCappedNearestTheDestinationFlatOnesAreNot)
   EXPECT_EQ(triangles.arrowsLeftOut(), 0u);
   EXPECT_EQ(triangles.flatArrows().size(), many.arrows.size() * ArrowOutline::kVerticesPerArrow);
 }
+
+TEST(PathTriangles, TheUnusedStylesBufferIsGivenBack)
+{
+  SpacedPath path;
+  path.has_destination = true;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double x = -0.3 * i;
+    path.arrows.push_back({{x - 0.2, 0.0}, {x - 0.02, 0.0}});
+  }
+  const SpacingParameters p;
+  PathTriangles triangles;
+  triangles.build(path, p, PathTriangles::ArrowStyle::Solid);
+  EXPECT_EQ(triangles.arrowsDrawn(), 3000u);
+  EXPECT_GE(triangles.solidArrows().capacity(), 3000u * ArrowSolid::kVerticesPerArrow);
+  triangles.build(path, p, PathTriangles::ArrowStyle::Flat);  // back to Flat: the 3D buffer goes
+  EXPECT_EQ(triangles.solidArrows().capacity(), 0u);
+  EXPECT_EQ(triangles.arrowsDrawn(), 3000u);
+  triangles.build(path, p, PathTriangles::ArrowStyle::Solid);
+  EXPECT_EQ(triangles.flatArrows().capacity(), 0u);
+}
+
+TEST(PathTriangles, InvalidArrowsAreNotCountedAsDrawn)
+{
+  SpacedPath path;
+  path.has_destination = true;
+  path.arrows.push_back({{-1.0, 0.0}, {-0.8, 0.0}});
+  path.arrows.push_back({{-0.5, 0.0}, {-0.5, 0.0}});  // zero length: no direction, not drawable
+  path.arrows.push_back({{-0.3, 0.0}, {-0.1, 0.0}});
+  const SpacingParameters p;
+  PathTriangles triangles;
+  triangles.build(path, p, PathTriangles::ArrowStyle::Flat);
+  EXPECT_EQ(triangles.arrowsDrawn(), 2u);
+  triangles.build(path, p, PathTriangles::ArrowStyle::Solid);
+  EXPECT_EQ(triangles.arrowsDrawn(), 2u);
+}
