@@ -50,7 +50,7 @@
 #include "rviz_projector/displays/projector_footprint_visual.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/render_target_readback.h"
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
 {
