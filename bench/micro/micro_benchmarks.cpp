@@ -23,7 +23,7 @@
 #include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/rigid_transform.h"
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 namespace
 {

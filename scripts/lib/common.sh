@@ -20,7 +20,7 @@ rp_packages() {
     echo "$common python3-catkin-pkg ros-noetic-catkin ros-noetic-roscpp ros-noetic-rviz ros-noetic-pluginlib
       ros-noetic-nav-msgs ros-noetic-sensor-msgs ros-noetic-geometry-msgs ros-noetic-visualization-msgs
       ros-noetic-std-msgs ros-noetic-tf2 ros-noetic-tf2-ros ros-noetic-tf2-geometry-msgs ros-noetic-rostest
-      ros-noetic-roslaunch ros-noetic-rosbash ros-noetic-image-view ros-noetic-rostopic ros-noetic-camera-calibration-parsers
+      ros-noetic-roslaunch ros-noetic-rosbash ros-noetic-image-view ros-noetic-rostopic ros-noetic-camera-calibration-parsers ros-noetic-image-geometry
       ros-noetic-roslib"
   else
     echo "$common catkin python3-catkin-pkg python3-rospkg python3-empy ros-message-generation
@@ -28,7 +28,7 @@ rp_packages() {
       libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
       librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
-      tf2-tools clang libclang-rt-14-dev"
+      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev"
   fi
 }
 

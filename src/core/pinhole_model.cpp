@@ -117,7 +117,11 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
     check.error = error.str();
     return check;
   }
-  // Binning scales pixel coordinates: u_binned = (u + 0.5) / b - 0.5 keeps pixel centres consistent.
+  // Binning divides P's first row by binning_x and its second by binning_y (fx, cx, Tx; fy, cy, Ty),
+  // after the ROI offset moved the principal point: u_binned = u_roi / b. That is CameraInfo's
+  // definition as image_geometry::PinholeCameraModel implements it, so that a consumer of the same
+  // CameraInfo puts a point on the same pixel; it is not (u + 0.5) / b - 0.5, which would keep the
+  // centre of a binned pixel at the centre of the b x b pixels it sums, a quarter pixel apart at b = 2.
   fx /= bx;
   fy /= by;
   if (!(fx >= kMinFocalLength) || !(fy >= kMinFocalLength))
@@ -129,8 +133,8 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
   }
   tx /= bx;
   ty /= by;
-  cx = (cx + 0.5) / bx - 0.5;
-  cy = (cy + 0.5) / by - 0.5;
+  cx /= bx;
+  cy /= by;
 
   std::ostringstream warning;
   const bool distorted = std::any_of(c.D.begin(), c.D.end(), [](double d) { return d != 0.0; });

@@ -12,10 +12,11 @@
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/status_property.h>
 
+#include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_counter.h"
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
 {
@@ -27,10 +28,6 @@ enum Style
   kSolid = 1,
 };
 
-/// Smallest accepted arrow size or circle diameter: a zero-sized shape would silently vanish.
-constexpr float kMinSize = 0.005f;
-/// Largest accepted size: beyond a few metres arrows stop meaning anything on a floor.
-constexpr float kMaxSize = 10.0f;
 /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
 constexpr double kArrowLift = 0.001;
 /// How often the private path queue is drained, milliseconds.
@@ -40,8 +37,8 @@ rviz::FloatProperty* sizeProperty(const QString& name, float value, const QStrin
                                   rviz::Property* parent, const char* slot, QObject* receiver)
 {
   auto* property = new rviz::FloatProperty(name, value, description, parent, slot, receiver);
-  property->setMin(kMinSize);
-  property->setMax(kMaxSize);
+  property->setMin(static_cast<float>(path_style::kMinSize));
+  property->setMax(static_cast<float>(path_style::kMaxSize));
   return property;
 }
 }  // namespace
@@ -68,8 +65,8 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
       "Exact: path length from one arrow tip to the next, metres. Paper: minimum distance between the "
       "path poses that arrows join, metres.",
       this, SLOT(updateSpacing()), this);
-  spacing_property_->setMin(0.01f);
-  spacing_property_->setMax(100.0f);
+  spacing_property_->setMin(static_cast<float>(path_style::kMinSpacing));
+  spacing_property_->setMax(static_cast<float>(path_style::kMaxSpacing));
 
   shaft_length_property_ = sizeProperty("Shaft length", static_cast<float>(defaults.arrow.shaft_length),
                                         "Length of an arrow's shaft, metres (Exact mode; in Paper mode "
@@ -91,17 +88,17 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
   circle_color_property_ = new rviz::ColorProperty("Circle color", QColor(0, 255, 0),
                                                    "Colour of the destination circle.", this,
                                                    SLOT(updateAppearance()), this);
-  alpha_property_ = new rviz::FloatProperty("Alpha", 1.0f, "Opacity: 1 is opaque, 0 invisible.", this,
+  alpha_property_ = new rviz::FloatProperty("Alpha", static_cast<float>(path_style::kDefaultAlpha), "Opacity: 1 is opaque, 0 invisible.", this,
                                             SLOT(updateAppearance()), this);
   alpha_property_->setMin(0.0f);
   alpha_property_->setMax(1.0f);
   height_property_ = new rviz::FloatProperty(
-      "Height above floor", 0.01f,
+      "Height above floor", static_cast<float>(path_style::kDefaultHeight),
       "Height of the drawing above z = 0 of the fixed frame, metres (a little lift avoids fighting "
       "with a grid or map on the floor).",
       this, SLOT(updateAppearance()), this);
-  height_property_->setMin(-10.0f);
-  height_property_->setMax(10.0f);
+  height_property_->setMin(static_cast<float>(-path_style::kMaxHeight));
+  height_property_->setMax(static_cast<float>(path_style::kMaxHeight));
 
   style_property_ = new rviz::EnumProperty(
       "Style", "Flat",
@@ -159,7 +156,6 @@ void ProjectedPathDisplay::reset()
     return;
   }
   MFDClass::reset();
-  have_path_ = false;
   last_msg_.reset();
   floor_points_.clear();
   dropped_poses_ = 0;
@@ -261,7 +257,6 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
   const RigidTransform to_fixed = RigidTransform::fromQuaternion(
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
   dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);
-  have_path_ = true;
   last_msg_ = msg;
   rebuild();
 }
@@ -307,9 +302,9 @@ void ProjectedPathDisplay::checkGeometry(const SpacingParameters& p)
 void ProjectedPathDisplay::rebuild()
 {
   checkGeometry(spacer_.parameters());
-  if (!have_path_)
+  if (!last_msg_)
   {
-    return;
+    return;  // no path (in the fixed frame) yet
   }
   spaced_ = &spacer_.space(floor_points_);
   redraw();

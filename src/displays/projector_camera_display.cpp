@@ -34,7 +34,7 @@
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/projector_pose.h"
 #include "rviz_projector/displays/projector_view.h"
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
 {

@@ -1,6 +1,6 @@
 #include "rviz_projector/nodes/calibration_file.h"
 
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 #include <algorithm>
 #include <array>
@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <camera_calibration_parsers/parse.h>
@@ -134,12 +135,18 @@ std::string checkMatrix(const YAML::Node& doc, const std::string& field, int row
   {
     return "field " + quoted(field) + ": 'data' must be a list of numbers (got " + describe(data) + ")";
   }
-  const long long expected = size[0] * size[1];
-  if (static_cast<long long>(data.size()) != expected)
+  // rows x cols can exceed long long (both up to 2^63 - 1): compare without multiplying when it would.
+  const bool fits = size[1] == 0 || size[0] <= std::numeric_limits<long long>::max() / size[1];
+  const long long expected = fits ? size[0] * size[1] : 0;
+  if (!fits || static_cast<long long>(data.size()) != expected)
   {
     std::ostringstream error;
     error << "field " << quoted(field) << ": 'data' has " << data.size() << " numbers, expected rows x cols = "
-          << size[0] << " x " << size[1] << " = " << expected;
+          << size[0] << " x " << size[1];
+    if (fits)
+    {
+      error << " = " << expected;
+    }
     return error.str();
   }
   for (std::size_t i = 0; i < data.size(); ++i)

@@ -30,8 +30,9 @@
 #include <vector>
 
 #include "rviz_projector/core/path_spacer.h"
+#include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/core/rigid_transform.h"
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 #include "rviz_projector/nodes/path_markers.h"
 
 namespace rviz_projector
@@ -39,12 +40,12 @@ namespace rviz_projector
 namespace
 {
 const char* const kName = "path_to_markers";
-// Limits of the ProjectedPath display's properties.
-constexpr double kMinSize = 0.005;
-constexpr double kMaxSize = 10.0;
-constexpr double kMinSpacing = 0.01;
-constexpr double kMaxSpacing = 100.0;
-constexpr double kMaxHeight = 10.0;
+// Limits of the ProjectedPath display's properties (shared: core/path_style_limits.h).
+using path_style::kMaxHeight;
+using path_style::kMaxSize;
+using path_style::kMaxSpacing;
+using path_style::kMinSize;
+using path_style::kMinSpacing;
 constexpr double kWarnPeriod = 5.0;  // seconds between repeated warnings
 
 bool isNumber(const XmlRpc::XmlRpcValue& value)

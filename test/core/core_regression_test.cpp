@@ -130,7 +130,7 @@ TEST(CoreRegression, BillionMetrePathStaysBoundedAndFinite)
 {
   // 1e9 m of path at the smallest spacing: max_arrows bounds the work and the memory.
   SpacingParameters p;
-  p.spacing = 1e-3;
+  p.spacing = SpacingParameters::kMinSpacing;
   p.max_arrows = 1000;
   PathSpacer spacer(p);
   const SpacedPath& r = spacer.space({Vec2{-5e8, 1e9}, Vec2{5e8, 1e9}});

@@ -122,8 +122,11 @@ TEST(PinholeModel, BinningAndRegionOfInterest)
   Vec2 u_full, u_binned;
   ASSERT_TRUE(full.project({0.3, 0.2, 2.0}, u_full));
   ASSERT_TRUE(binned.project({0.3, 0.2, 2.0}, u_binned));
-  EXPECT_NEAR(u_binned.x, (u_full.x + 0.5) / 2 - 0.5, 1e-12);
-  EXPECT_NEAR(u_binned.y, (u_full.y + 0.5) / 2 - 0.5, 1e-12);
+  // CameraInfo's binning (as image_geometry applies it) divides pixel coordinates: u / 2.
+  EXPECT_NEAR(u_binned.x, u_full.x / 2, 1e-12);
+  EXPECT_NEAR(u_binned.y, u_full.y / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(binned.cx(), 320.0);
+  EXPECT_DOUBLE_EQ(binned.fx(), 500.0);
 
   c.binning_x = c.binning_y = 0;
   c.roi_x_offset = 100;

@@ -248,6 +248,42 @@ TEST(CalibrationFile, WarnsWhenKAndPDisagree)
   std::remove(file.c_str());
 }
 
+TEST(CalibrationFile, HugeMatrixSizeIsRefusedWithoutOverflow)
+{
+  // Regression: rows x cols of distortion_coefficients (any size allowed) was multiplied in long
+  // long: 2^62 x 4 overflowed (undefined behaviour; UBSan reports it, and the wrapped product, 0,
+  // matched the empty data list). The size must be refused with the numbers the user wrote.
+  const std::string file = ::testing::TempDir() + "/huge_distortion.yaml";
+  FILE* out = std::fopen(file.c_str(), "w");
+  ASSERT_TRUE(out != nullptr);
+  std::fputs("image_width: 1280\nimage_height: 800\ncamera_matrix: {rows: 3, cols: 3, data: [1900, 0, 640, 0, 1900, "
+             "400, 0, 0, 1]}\ndistortion_model: plumb_bob\ndistortion_coefficients: {rows: 4611686018427387904, "
+             "cols: 4, data: []}\nrectification_matrix: {rows: 3, cols: 3, data: [1, 0, 0, 0, 1, 0, 0, 0, 1]}\n"
+             "projection_matrix: {rows: 3, cols: 4, data: [1900, 0, 640, 0, 0, 1900, 400, 0, 0, 0, 1, 0]}\n",
+             out);
+  std::fclose(out);
+  rviz_projector::CalibrationFile calibration;
+  const std::string error = rviz_projector::loadCalibrationFile(file, calibration);
+  EXPECT_NE(std::string::npos,
+            error.find(file + ": field 'distortion_coefficients': 'data' has 0 numbers, expected rows x cols = "
+                              "4611686018427387904 x 4"))
+      << error;
+  // The largest sizes YAML can hold: no overflow either.
+  out = std::fopen(file.c_str(), "w");
+  ASSERT_TRUE(out != nullptr);
+  std::fputs("image_width: 1280\nimage_height: 800\ncamera_matrix: {rows: 3, cols: 3, data: [1900, 0, 640, 0, 1900, "
+             "400, 0, 0, 1]}\ndistortion_coefficients: {rows: 9223372036854775807, cols: 9223372036854775807, "
+             "data: [0]}\nrectification_matrix: {rows: 3, cols: 3, data: [1, 0, 0, 0, 1, 0, 0, 0, 1]}\n"
+             "projection_matrix: {rows: 3, cols: 4, data: [1900, 0, 640, 0, 0, 1900, 400, 0, 0, 0, 1, 0]}\n",
+             out);
+  std::fclose(out);
+  const std::string error_max = rviz_projector::loadCalibrationFile(file, calibration);
+  EXPECT_NE(std::string::npos, error_max.find("'data' has 1 numbers, expected rows x cols = 9223372036854775807 x "
+                                              "9223372036854775807"))
+      << error_max;
+  std::remove(file.c_str());
+}
+
 int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);

@@ -518,7 +518,7 @@ TEST_F(CameraRobustness, UsableOddCameraInfos)
          i.binning_x = 2;
          i.binning_y = 2;
        },
-       "640x400, fx 650, fy 650, cx 319.5, cy 199.5"},
+       "640x400, fx 650, fy 650, cx 319.75, cy 199.75"},  // (639.5 / 2, as image_geometry bins)
       {"ROI 640x400 at 320,200",
        [](sensor_msgs::CameraInfo& i) {
          i.roi.x_offset = 320;

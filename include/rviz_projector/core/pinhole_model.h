@@ -30,8 +30,11 @@ public:
                double tx = 0.0, double ty = 0.0);
 
   /**
-   * Builds the model as CameraInfo defines it: from P (from K when P is all zero), then the region
-   * of interest and binning applied. On error `out` is left unchanged.
+   * Builds the model as CameraInfo defines it, exactly as image_geometry::PinholeCameraModel does:
+   * from P (from [K | 0] when P is all zero), then the region of interest (its offset subtracted
+   * from cx, cy) and binning (P's rows divided by binning_x, binning_y) applied. The model's image
+   * is the reduced one: the ROI's size (the whole image when the ROI is empty) divided by the
+   * binning, rounded down. On error `out` is left unchanged.
    */
   static LensCheck fromCalibration(const LensCalibration& calibration, PinholeModel& out);
 

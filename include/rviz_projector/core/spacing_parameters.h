@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "rviz_projector/core/arrow_dimensions.h"
+#include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/core/spacing_mode.h"
 
 namespace rviz_projector
@@ -20,7 +21,8 @@ struct SpacingParameters
   /// Upper bound on the arrows produced (a 1e9 m path at 1 cm spacing must not allocate forever).
   std::size_t max_arrows = 100000;
 
-  /// Smallest spacing accepted; smaller values are raised to it.
-  static constexpr double kMinSpacing = 1e-3;
+  /// Smallest spacing accepted; smaller values are raised to it. The same limit as the display's
+  /// and path_to_markers' (path_style_limits.h).
+  static constexpr double kMinSpacing = path_style::kMinSpacing;
 };
 }  // namespace rviz_projector

@@ -95,8 +95,7 @@ private:
   const SpacedPath* spaced_;
   SpacedPath empty_;
   std::vector<Vec2> floor_points_;  // last path, in the fixed frame
-  bool have_path_ = false;
-  nav_msgs::Path::ConstPtr last_msg_;
+  nav_msgs::Path::ConstPtr last_msg_;  // last path drawn (null: none yet); floor_points_ hold it
   std::size_t dropped_poses_ = 0;
   PathTriangles triangles_;  // buffers kept between paths
   std::size_t mesh_builds_ = 0;

@@ -9,6 +9,7 @@
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/core/spaced_path.h"
 #include "rviz_projector/core/spacing_parameters.h"
 
@@ -19,7 +20,7 @@ struct PathMarkerStyle
   std_msgs::ColorRGBA arrow_color;   // defaults: magenta arrows,
   std_msgs::ColorRGBA circle_color;  // green circle, as the ProjectedPath display
   /// z of the drawing in the marker frame, metres (the display's "Height above floor").
-  double height = 0.01;
+  double height = path_style::kDefaultHeight;
 
   PathMarkerStyle();
 };
@@ -52,12 +53,11 @@ public:
   const visualization_msgs::MarkerArray& update(const SpacedPath& path, const SpacingParameters& parameters,
                                                 const std_msgs::Header& header);
 
-  std::size_t publishedArrows() const { return published_arrows_; }
-  bool publishedDestination() const { return published_destination_; }
-
 private:
   PathMarkerStyle style_;
   visualization_msgs::MarkerArray array_;
+  // What the previous array published: the arrows and destination of that path that the next one
+  // no longer has are DELETEd (see update()).
   std::size_t published_arrows_ = 0;
   bool published_destination_ = false;
   bool first_ = true;

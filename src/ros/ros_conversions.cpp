@@ -1,4 +1,4 @@
-#include "rviz_projector/displays/ros_conversions.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 #include <algorithm>
 #include <cmath>
