@@ -2,7 +2,9 @@
 // (NaN/Inf/huge/denormal values included). Invariants: no crash or UB (ASan/UBSan), at most
 // max_arrows arrows, NaN/Inf points dropped and counted, the destination is the last finite point,
 // finite arrows inside the path's bounding box for sane inputs, Exact arrows no longer than an
-// arrow, Paper arrows join input points, Exact arrows unchanged when the start of the path is
+// arrow, on the path and in order along it (arc length from the destination grows from tip to
+// tail and from one arrow to the next, checked against an arc-length walk of our own), Paper
+// arrows join input points in path order, Exact arrows unchanged when the start of the path is
 // trimmed, and the same result when the instance is reused.
 #include <algorithm>
 #include <cstddef>
@@ -71,6 +73,73 @@ std::vector<Vec2> pathFrom(Input& in)
   }
   return path;
 }
+
+/**
+ * The polyline of the finite points walked from the destination backwards, with the arc length
+ * summed here (not by the code under test). locate() finds the smallest arc length >= a lower
+ * bound at which a point lies on the polyline (within `tolerance`); the walk only moves forward,
+ * so locating a sequence is linear. A greedy smallest choice never rejects a sequence that has an
+ * increasing placement, so a failure is a real violation.
+ */
+class ArcWalk
+{
+public:
+  ArcWalk(const std::vector<Vec2>& points, double tolerance) : points_(points), tolerance_(tolerance)
+  {
+    from_end_.assign(points.size(), 0.0);
+    for (std::size_t i = points.size() - 1; i > 0; --i)
+    {
+      from_end_[i - 1] = from_end_[i] + distance(points[i], points[i - 1]);
+    }
+    segment_ = points.size() >= 2 ? points.size() - 2 : 0;
+  }
+
+  /// Arc length from the destination of `p` on the polyline, at least `lower` (minus the
+  /// tolerance); negative when `p` lies nowhere on the rest of the path.
+  double locate(const Vec2& p, double lower)
+  {
+    const double slack = 4.0 * tolerance_;
+    // Segment j runs from points_[j + 1] (arc from_end_[j + 1]) to points_[j] (arc from_end_[j]).
+    while (true)
+    {
+      const Vec2& a = points_[segment_ + 1];
+      const Vec2& b = points_[segment_];
+      const double start = from_end_[segment_ + 1];
+      const double length = from_end_[segment_] - start;
+      if (from_end_[segment_] >= lower - slack)
+      {
+        const Vec2 ab = b - a;
+        const double ab2 = dot(ab, ab);
+        double t = 0.0;
+        if (ab2 > 0.0 && std::isfinite(ab2))
+        {
+          t = std::min(1.0, std::max(0.0, dot(p - a, ab) / ab2));
+        }
+        const Vec2 closest = a + ab * t;
+        if (distance(p, closest) <= tolerance_)
+        {
+          const double arc = start + t * length;
+          if (arc >= lower - slack)
+          {
+            return std::max(arc, lower);
+          }
+          // On this segment, but before the bound: a straight segment holds a point only once.
+        }
+      }
+      if (segment_ == 0)
+      {
+        return -1.0;
+      }
+      --segment_;
+    }
+  }
+
+private:
+  const std::vector<Vec2>& points_;
+  double tolerance_;
+  std::vector<double> from_end_;
+  std::size_t segment_;
+};
 
 bool sameResult(const SpacedPath& a, const SpacedPath& b)
 {
@@ -183,6 +252,43 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (p.mode == SpacingMode::Paper && !r.arrows.empty())
     {
       RP_FUZZ_CHECK(r.arrows.front().tip.x == r.destination.x && r.arrows.front().tip.y == r.destination.y);
+      // In path order: tip 0, tail 0, tip 1, tail 1, ... are input points at strictly decreasing
+      // indices (the walk goes from the destination towards the start).
+      std::size_t next = finite.size();  // the next point must have an index below this
+      auto at = [&](const Vec2& v) {
+        while (next > 0)
+        {
+          --next;
+          if (finite[next].x == v.x && finite[next].y == v.y)
+          {
+            return true;
+          }
+        }
+        return false;
+      };
+      for (const Arrow& a : r.arrows)
+      {
+        RP_FUZZ_CHECK(at(a.tip) && "Paper: arrows out of path order");
+        RP_FUZZ_CHECK(at(a.tail) && "Paper: arrows out of path order");
+      }
+    }
+    if (p.mode == SpacingMode::Exact && !r.arrows.empty())
+    {
+      // On the path and in order: tips at growing arc length from the destination, tails too,
+      // each tail at or beyond its own tip. Tolerance: rounding of the coordinates' magnitude and
+      // of the arc length summed over the path.
+      const double tolerance = 1e-9 * (extent + r.path_length);
+      ArcWalk tips(finite, tolerance);
+      ArcWalk tails(finite, tolerance);
+      double tip_arc = 0.0;
+      double tail_arc = 0.0;
+      for (const Arrow& a : r.arrows)
+      {
+        tip_arc = tips.locate(a.tip, tip_arc);
+        RP_FUZZ_CHECK(tip_arc >= 0.0 && "Exact: a tip is off the path or out of order");
+        tail_arc = tails.locate(a.tail, std::max(tail_arc, tip_arc));
+        RP_FUZZ_CHECK(tail_arc >= 0.0 && "Exact: a tail is off the path, before its tip, or out of order");
+      }
     }
   }
 

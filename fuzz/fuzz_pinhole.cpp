@@ -3,8 +3,10 @@
 // distortion models, binning and ROI), then project / ray / centre / glProjectionMatrix and a
 // FloorFootprint from a pose with a possibly zero or NaN quaternion. Invariants: no crash or UB;
 // a refused calibration leaves the model unchanged and says why; an accepted one is positive,
-// finite and within kMaxResolution; for sane finite inputs every output is finite and project()
-// inverts ray().
+// finite and within kMaxResolution; for sane finite inputs every output is finite; for
+// well-conditioned lenses (Tx/Ty included) pixel -> ray -> project gives the pixel back and point
+// -> project -> ray (from the optical centre) gives the point back, within a tolerance relative to
+// the magnitudes involved.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -89,6 +91,14 @@ void print(const LensCalibration& c)
   std::fprintf(stderr, "\n");
 }
 
+/// Lenses whose round trips are meaningful in doubles: focal lengths, centre and Tx/Ty within
+/// bounds where the error of a round trip stays far below the tolerances used.
+bool wellConditioned(const PinholeModel& lens)
+{
+  return lens.fx() > 1e-3 && lens.fy() > 1e-3 && lens.fx() < 1e7 && lens.fy() < 1e7 && std::fabs(lens.cx()) < 1e7 &&
+         std::fabs(lens.cy()) < 1e7 && std::fabs(lens.tx()) < 1e9 && std::fabs(lens.ty()) < 1e9;
+}
+
 bool sameModel(const PinholeModel& a, const PinholeModel& b)
 {
   return a.width() == b.width() && a.height() == b.height() && a.fx() == b.fx() && a.fy() == b.fy() &&
@@ -146,16 +156,19 @@ void fuzzOne(Input& in)
     {
       RP_FUZZ_CHECK(std::all_of(m.begin(), m.end(), [](double v) { return std::isfinite(v); }));
     }
-    // Round trip: the pixel of a point on the ray through `pixel` is `pixel` (no Tx/Ty).
-    if (lens.tx() == 0.0 && lens.ty() == 0.0 && std::fabs(pixel.x) < 1e5 && std::fabs(pixel.y) < 1e5 &&
-        lens.fx() > 1e-3 && lens.fy() > 1e-3 && lens.fx() < 1e7 && lens.fy() < 1e7 && std::fabs(lens.cx()) < 1e7 &&
-        std::fabs(lens.cy()) < 1e7)
+    // Round trip: the pixel of a point on the ray through `pixel` (from the optical centre,
+    // which Tx/Ty move) is `pixel`, at any depth.
+    if (wellConditioned(lens) && std::fabs(pixel.x) < 1e5 && std::fabs(pixel.y) < 1e5)
     {
       Vec2 back;
-      const double depth = 2.5;
-      RP_FUZZ_CHECK(lens.project(ray * depth, back));
-      const double tolerance = 1e-6 * (1.0 + std::fabs(pixel.x) + std::fabs(pixel.y) + std::fabs(lens.cx()) + std::fabs(lens.cy()));
-      RP_FUZZ_CHECK(std::fabs(back.x - pixel.x) <= tolerance && std::fabs(back.y - pixel.y) <= tolerance);
+      const double depth = in.boolean() ? 2.5 : 0.05 + std::fabs(in.number(100.0));
+      if (std::isfinite(depth) && depth > 0.0 && depth < 1e6)
+      {
+        RP_FUZZ_CHECK(lens.project(centre + ray * depth, back));
+        const double tolerance = 1e-6 * (1.0 + std::fabs(pixel.x) + std::fabs(pixel.y) + std::fabs(lens.cx()) +
+                                         std::fabs(lens.cy()) + (std::fabs(lens.tx()) + std::fabs(lens.ty())) / depth);
+        RP_FUZZ_CHECK(std::fabs(back.x - pixel.x) <= tolerance && std::fabs(back.y - pixel.y) <= tolerance);
+      }
     }
   }
   const Vec3 point = in.vec3(10.0);
@@ -164,6 +177,19 @@ void fuzzOne(Input& in)
   {
     RP_FUZZ_CHECK(isFinite(projected));
     RP_FUZZ_CHECK(point.z > 0.0);
+    // The other way round: the ray through the point's pixel, from the optical centre, passes
+    // through the point (compared at the point's depth).
+    if (sane_lens && wellConditioned(lens) && sane(point) && point.z > 1e-3 && std::fabs(point.x) < 1e3 &&
+        std::fabs(point.y) < 1e3 && point.z < 1e3)
+    {
+      const Vec3 back = lens.centre() + lens.ray(projected) * point.z;
+      const double tx = 1e-9 * (1.0 + std::fabs(point.x) + point.z +
+                                (std::fabs(lens.cx()) * point.z + std::fabs(projected.x) * point.z + std::fabs(lens.tx())) / lens.fx());
+      const double ty = 1e-9 * (1.0 + std::fabs(point.y) + point.z +
+                                (std::fabs(lens.cy()) * point.z + std::fabs(projected.y) * point.z + std::fabs(lens.ty())) / lens.fy());
+      RP_FUZZ_CHECK(std::fabs(back.x - point.x) <= tx && std::fabs(back.y - point.y) <= ty);
+      RP_FUZZ_CHECK(back.z == point.z);
+    }
   }
 
   // Footprint: the projector somewhere above (or below) the floor, any orientation.

@@ -1,7 +1,10 @@
 // libFuzzer target: the floor shapes a display turns into triangles: ArrowOutline, ArrowSolid,
 // DiscOutline and FloorGrid, with positions and sizes from the fuzz input. Invariants: no crash or
 // UB, the documented vertex counts, finite vertices (and unit normals) for sane finite inputs,
-// an arrow contains its tip, a disc its centre, and a grid stays within kMaxLines lines.
+// an arrow contains its tip, a disc its centre, and a grid stays within kMaxLines lines. Outlines
+// are closed and simple: the arrow's outline is counter-clockwise, its triangles use only its
+// corners and cover exactly its area, and no two non-adjacent edges meet; the disc's rim closes
+// on itself and its chords do not cross (a plain O(n^2) check of every pair of edges).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -21,6 +24,79 @@ namespace
 {
 /// Sizes as the displays pass them: PathSpacer::setParameters makes them finite and >= 0.
 bool saneSize(double v) { return sane(v) && v >= 0.0; }
+
+double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+
+/// True when p and q lie on opposite sides of the line through a and b, each further than `margin`.
+bool straddles(const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q, double margin)
+{
+  const double length = distance(a, b);
+  if (!(length > 0.0))
+  {
+    return false;
+  }
+  const double dp = cross(b - a, p - a) / length, dq = cross(b - a, q - a) / length;
+  return (dp > margin && dq < -margin) || (dp < -margin && dq > margin);
+}
+
+/// Segments ab and cd cross, each end further than `margin` from the other segment's line
+/// (nearly touching segments, where rounding decides, do not count).
+bool cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, double margin)
+{
+  return straddles(a, b, c, d, margin) && straddles(c, d, a, b, margin);
+}
+
+/**
+ * True when the closed polygon (last vertex joined to the first) is simple: after merging
+ * consecutive vertices closer than `merge`, no two edges that do not share a vertex cross (by more
+ * than `touch`: touch < merge, so rounding at a merged vertex is never taken for a crossing).
+ */
+bool simplePolygon(const std::vector<Vec2>& polygon, double merge, double touch)
+{
+  std::vector<Vec2> v;
+  for (const Vec2& p : polygon)
+  {
+    if (v.empty() || distance(v.back(), p) > merge)
+    {
+      v.push_back(p);
+    }
+  }
+  while (v.size() > 1 && distance(v.back(), v.front()) <= merge)
+  {
+    v.pop_back();
+  }
+  const std::size_t n = v.size();
+  if (n < 3)
+  {
+    return false;  // collapsed: no area
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (std::size_t j = i + 2; j < n; ++j)
+    {
+      if (i == 0 && j == n - 1)
+      {
+        continue;  // the closing edge is adjacent to the first
+      }
+      if (cross(v[i], v[(i + 1) % n], v[j], v[(j + 1) % n], touch))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+/// Shoelace formula, relative to the first vertex (no cancellation from large coordinates).
+double signedArea(const std::vector<Vec2>& polygon)
+{
+  double twice = 0.0;
+  for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+  {
+    twice += cross(polygon[i] - polygon[0], polygon[i + 1] - polygon[0]);
+  }
+  return 0.5 * twice;
+}
 
 void arrows(Input& in)
 {
@@ -71,6 +147,30 @@ void arrows(Input& in)
     {
       RP_FUZZ_CHECK(outline.distanceTo(arrow.tip) < 1e-9);
     }
+    // Closed and simple, for shapes that are not degenerate at this magnitude (widths and length
+    // well above the rounding of the coordinates): counter-clockwise, the triangles use only
+    // corners and cover exactly the outline's area, no two non-adjacent edges meet.
+    const double scale = std::max(1.0, magnitude + std::max(d.shaft_diameter, d.head_diameter));
+    const double length = norm(arrow.tip - arrow.tail);
+    if (magnitude < 1e6 && d.shaft_diameter > 1e-6 * scale && d.head_diameter > 1e-6 * scale && length > 1e-6 * scale &&
+        d.head_length > 1e-6 * scale)
+    {
+      const std::vector<Vec2> corners(outline.corners().begin(), outline.corners().end());
+      const double area = signedArea(corners);
+      RP_FUZZ_CHECK(area > 0.0 && "arrow outline not counter-clockwise");
+      double triangles_area = 0.0;
+      for (std::size_t t = 0; t + 2 < flat.size(); t += 3)
+      {
+        triangles_area += signedArea({flat[t], flat[t + 1], flat[t + 2]});
+      }
+      for (const Vec2& v : flat)
+      {
+        RP_FUZZ_CHECK(std::any_of(corners.begin(), corners.end(), [&](const Vec2& c) { return c.x == v.x && c.y == v.y; }));
+      }
+      const double perimeter = 2.0 * length + 2.0 * d.head_diameter + d.shaft_diameter;
+      RP_FUZZ_CHECK(std::fabs(triangles_area - area) <= 1e-9 * scale * perimeter && "arrow triangles do not fill the outline");
+      RP_FUZZ_CHECK(simplePolygon(corners, 1e-9 * scale, 1e-10 * scale) && "arrow outline self-intersects");
+    }
   }
 
   const ArrowSolid solid(arrow, d);
@@ -107,6 +207,31 @@ void discs(Input& in)
       RP_FUZZ_CHECK(isFinite(v));
     }
     RP_FUZZ_CHECK(disc.contains(centre));
+    // The fan's rim: each triangle (centre, rim k, rim k+1) starts where the previous one ended,
+    // the last ends where the first started (closed), and the rim polygon is simple.
+    const double radius = 0.5 * diameter;
+    const double scale = std::max({1.0, std::fabs(centre.x), std::fabs(centre.y), radius});
+    if (!triangles.empty() && radius > 1e-6 * scale && radius < 1e6)
+    {
+      std::vector<Vec2> rim;
+      for (std::size_t t = 0; t < triangles.size(); t += 3)
+      {
+        RP_FUZZ_CHECK(triangles[t].x == centre.x && triangles[t].y == centre.y);
+        if (t > 0)
+        {
+          RP_FUZZ_CHECK(triangles[t + 1].x == triangles[t - 1].x && triangles[t + 1].y == triangles[t - 1].y);
+        }
+        RP_FUZZ_CHECK(signedArea({triangles[t], triangles[t + 1], triangles[t + 2]}) > 0.0 && "disc fan not counter-clockwise");
+        rim.push_back(triangles[t + 1]);
+      }
+      RP_FUZZ_CHECK(distance(triangles.back(), triangles[1]) <= 1e-9 * scale && "disc rim not closed");
+      const std::size_t n = rim.size();
+      // A chord is 2 r sin(pi / n) long: compare with the rounding of the coordinates.
+      if (n <= 64 && 2.0 * radius * std::sin(M_PI / static_cast<double>(n)) > 1e-6 * scale)
+      {
+        RP_FUZZ_CHECK(simplePolygon(rim, 1e-9 * scale, 1e-10 * scale) && "disc rim self-intersects");
+      }
+    }
   }
 }
 

@@ -2,7 +2,12 @@
 # Source it; it expects `set -euo pipefail` in the caller.
 
 RP_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-RP_WS="${RP_WS:-$RP_ROOT/.ws}"
+# Workspaces live OUTSIDE the repository: the repository is linked into the workspace's src/, and a
+# workspace inside the repository made a link loop (rosrun searches the package folder following
+# links: "find: File system loop detected"). One folder per clone, named after it:
+#   ${XDG_CACHE_HOME:-~/.cache}/rviz_projector/<clone folder name>-<hash of its path>/{ws,ws-sanitize,ws-bench}
+RP_WS_BASE="${RP_WS_BASE:-${XDG_CACHE_HOME:-$HOME/.cache}/rviz_projector/$(basename "$RP_ROOT")-$(printf '%s' "$RP_ROOT" | md5sum | cut -c1-8)}"
+RP_WS="${RP_WS:-$RP_WS_BASE/ws}"
 # A pyenv (or other) python3 first on PATH lacks catkin_pkg: ROS tools must run with the system one.
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 
@@ -56,12 +61,39 @@ rp_source_ros() {
   fi
 }
 
+# Links the repository into $RP_WS/src/rviz_projector: a link pointing elsewhere (another clone, a
+# moved repository) is replaced; anything that is not a link is left alone and is an error.
+rp_link_source() {
+  local link="$RP_WS/src/rviz_projector"
+  mkdir -p "$RP_WS/src"
+  case "$RP_WS/" in
+    "$RP_ROOT"/*) rp_log "WARNING: workspace $RP_WS is inside the repository: rosrun will report file system loops" ;;
+  esac
+  if [ -L "$link" ]; then
+    [ "$(readlink -f "$link")" = "$(readlink -f "$RP_ROOT")" ] && return 0
+    rp_log "replacing stale link $link -> $(readlink "$link")"
+    rm -f "$link"
+  elif [ -e "$link" ]; then
+    rp_log "$link exists and is not a link to $RP_ROOT: move it away"
+    return 1
+  fi
+  ln -s "$RP_ROOT" "$link"
+  # Workspaces of older versions of these scripts lived in the repository (.ws*/src/rviz_projector
+  # linking back to it): drop those links, which make rosrun report file system loops.
+  local old
+  for old in "$RP_ROOT"/.ws*/src/rviz_projector; do
+    if [ -L "$old" ] && [ "$(readlink -f "$old")" = "$(readlink -f "$RP_ROOT")" ]; then
+      rp_log "removing $old (old in-repository workspace; it made a link loop)"
+      rm -f "$old"
+    fi
+  done
+}
+
 # Builds the package in $RP_WS (the repository linked in as src/rviz_projector). Extra arguments
 # go to CMake (e.g. -DRVIZ_PROJECTOR_SANITIZE=ON). Quick when nothing changed.
 rp_build() {
   rp_source_ros
-  mkdir -p "$RP_WS/src"
-  [ -L "$RP_WS/src/rviz_projector" ] || ln -sfn "$RP_ROOT" "$RP_WS/src/rviz_projector"
+  rp_link_source
   rp_log "building in $RP_WS"
   (cd "$RP_WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCATKIN_ENABLE_TESTING=ON "$@" -j"$(nproc)" >"$RP_WS/build.log" 2>&1) || {

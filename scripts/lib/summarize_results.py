@@ -1,21 +1,69 @@
 #!/usr/bin/env python3
-"""Counts test cases in catkin's JUnit result files; prints the failures and one summary line.
+"""Counts test cases in catkin's JUnit result files; prints the failures, the skips with their
+reasons, and one summary line "N passed, N failed, N skipped".
 
 Usage: summarize_results.py RESULTS_DIR [EXPECTED_FILE ...]
 Exit status 1 when any test failed or errored, or an expected result file is missing (a test
 binary that crashed before writing results counts as a failure).
+
+A skipped test is never counted as passed. gtest (1.12, Debian 12) writes a GTEST_SKIP() as
+<testcase ... result="skipped"> with a <skipped message="file:line\nreason"> child, and a
+DISABLED_ test as <testcase ... status="notrun">; both count as skipped.
+
+rostest leaves two files per test: the gtest XML of the test node (rosunit-<test>.xml, which
+knows about skips) and its own summary (rostest-<file>.xml, which lists the same test cases but
+drops the skips). Test cases of a rostest summary are counted only when the node's own file is
+missing (no rosunit file: the node crashed, or is not a gtest).
 """
 import os
 import sys
 import xml.etree.ElementTree as ET
 
 
+def text_lines(text):
+    lines = [l.strip() for l in (text or "").strip().splitlines() if l.strip()]
+    return lines
+
+
+def skip_reason(case):
+    """Reason of a skipped test case, or None when it ran."""
+    for child in case:
+        if child.tag == "skipped":
+            lines = text_lines(child.get("message") or child.text)
+            # gtest puts "file:line" first, the GTEST_SKIP() message after it.
+            if len(lines) > 1 and ":" in lines[0] and " " not in lines[0]:
+                return " ".join(lines[1:]) + " (" + lines[0] + ")"
+            return " ".join(lines) if lines else "skipped (no reason given)"
+    if case.get("result") == "skipped":
+        return "skipped (no reason given)"
+    if case.get("status") == "notrun":
+        return "disabled (DISABLED_ prefix: a known, reported bug)"
+    return None
+
+
+def rosunit_cases(root_dir):
+    """(classname, name) of every test case found in rosunit-*.xml files."""
+    cases = set()
+    for dirpath, _, files in os.walk(root_dir):
+        for name in files:
+            if name.startswith("rosunit-") and name.endswith(".xml"):
+                try:
+                    tree = ET.parse(os.path.join(dirpath, name))
+                except ET.ParseError:
+                    continue
+                for case in tree.iter("testcase"):
+                    cases.add((case.get("classname", "?"), case.get("name", "?")))
+    return cases
+
+
 def main():
     root_dir = sys.argv[1]
     expected = sys.argv[2:]
-    passed = failed = 0
+    passed = failed = skipped = 0
     failures = []
+    skips = []
     seen = set()
+    node_cases = rosunit_cases(root_dir)
     for dirpath, _, files in os.walk(root_dir):
         for name in sorted(files):
             if not name.endswith(".xml"):
@@ -28,14 +76,26 @@ def main():
                 failed += 1
                 failures.append("%s: unreadable result file (%s)" % (name, e))
                 continue
+            summary_file = name.startswith("rostest-")
             for case in tree.iter("testcase"):
+                key = (case.get("classname", "?"), case.get("name", "?"))
+                label = "%s.%s" % key
                 problems = [c for c in case if c.tag in ("failure", "error")]
-                label = "%s.%s" % (case.get("classname", "?"), case.get("name", "?"))
                 if problems:
+                    # A failure is never lost, even if the node's own file has the case too.
+                    if summary_file and key in node_cases:
+                        continue
                     failed += 1
-                    text = (problems[0].get("message") or problems[0].text or "").strip().splitlines()
-                    failures.append("%s: %s" % (label, text[0] if text else problems[0].tag))
-                elif case.get("status", "run") != "notrun":
+                    text = text_lines(problems[0].get("message") or problems[0].text)
+                    failures.append("%s: %s" % (label, " | ".join(text[:3])[:300] if text else problems[0].tag))
+                    continue
+                if summary_file and key in node_cases:
+                    continue  # counted from rosunit-*.xml, which knows whether it was skipped
+                reason = skip_reason(case)
+                if reason is not None:
+                    skipped += 1
+                    skips.append("%s: %s" % (label, reason))
+                else:
                     passed += 1
     for name in expected:
         if name not in seen:
@@ -43,7 +103,9 @@ def main():
             failures.append("%s: no results (the test did not run or crashed)" % name)
     for line in failures:
         print("FAILED " + line)
-    print("%d passed, %d failed" % (passed, failed))
+    for line in skips:
+        print("SKIPPED " + line)
+    print("%d passed, %d failed, %d skipped" % (passed, failed, skipped))
     return 1 if failed else 0
 
 

@@ -1,0 +1,81 @@
+# shellcheck shell=bash
+# Checks of the scripts themselves, sourced by scripts/test (which defines pass/fail/skip, RP_WS,
+# RP_ROOT and the sourced workspace). Each check counts as one test.
+
+# Waits until COMMAND... succeeds, at most SECONDS; 0 when it did.
+rp_wait_for() {
+  local deadline=$((SECONDS + $1))
+  shift
+  until "$@"; do
+    [ "$SECONDS" -lt "$deadline" ] || return 1
+    sleep 0.1
+  done
+}
+
+# rosrun searches the package folder following links; a workspace inside the repository that links
+# the repository into its src/ made it print "find: File system loop detected" on every run.
+check_rosrun_no_loop() {
+  local log="$RP_WS/rosrun-check.log" pid status=0
+  # No master listens on this port: the node starts and keeps retrying to reach it, which shows
+  # that rosrun found and started it.
+  (
+    export ROS_MASTER_URI="http://localhost:$(rp_free_port)"
+    exec rosrun rviz_projector projector_info_publisher
+  ) >"$log" 2>&1 &
+  pid=$!
+  rp_wait_for 30 bash -c '! kill -0 "$1" 2>/dev/null || grep -q "Failed to contact master" "$2"' _ "$pid" "$log" ||
+    status=1
+  kill -TERM "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+  if grep -q 'File system loop detected' "$log"; then
+    fail "rosrun rviz_projector projector_info_publisher reports a file system loop:"
+    grep -m 4 'File system loop detected' "$log" | sed 's/^/    /'
+  elif [ "$status" -ne 0 ] || ! grep -q 'Failed to contact master' "$log"; then
+    fail "rosrun rviz_projector projector_info_publisher did not start the node within 30 s:"
+    tail -n 10 "$log" | sed 's/^/    /'
+  else
+    pass
+    rp_log "rosrun rviz_projector projector_info_publisher: found, no file system loop"
+  fi
+}
+
+# scripts/demo --headless: exit 0, both screenshots of each shot present and not one colour, and no
+# process it started (all carry a mark in their environment, inherited from here) outlives it.
+check_demo_headless() {
+  local out="$RP_WS/demo-check" mark pids log="$RP_WS/demo-check.log" problems=() f
+  rm -rf "$out"
+  mark="rp-test-demo-$$-$(date +%s%N)"
+  local started=$SECONDS status=0
+  RP_TEST_DEMO_MARK="$mark" RP_WS="$RP_WS" DEMO_OUTPUT="$out" DEMO_SECONDS=0 DEMO_INTERVAL=0.5 DEMO_TIMEOUT=90 \
+    timeout -k 10 240 "$RP_ROOT/scripts/demo" --headless >"$log" 2>&1 || status=$?
+  [ "$status" -eq 0 ] || problems+=("exit status $status")
+  for f in rviz-1 projector-1 rviz-2 projector-2; do
+    if [ ! -s "$out/$f.png" ]; then
+      problems+=("no $f.png")
+    elif [ "$(identify -format '%k' "$out/$f.png" 2>/dev/null || echo 0)" -le 1 ]; then
+      problems+=("$f.png is blank (one colour)")
+    fi
+  done
+  pids=""
+  for f in /proc/[0-9]*/environ; do
+    if grep -qzx "RP_TEST_DEMO_MARK=$mark" "$f" 2>/dev/null; then
+      f=${f#/proc/}
+      pids="${pids:+$pids }${f%/environ}"
+    fi
+  done
+  if [ -n "$pids" ]; then
+    problems+=("processes it started still run:")
+    # shellcheck disable=SC2086
+    while IFS= read -r f; do problems+=("  $f"); done < <(ps -o pid=,args= -p "${pids// /,}" 2>/dev/null | cut -c1-160)
+    # shellcheck disable=SC2086
+    kill -KILL $pids 2>/dev/null || true
+  fi
+  if [ ${#problems[@]} -eq 0 ]; then
+    pass
+    rp_log "scripts/demo --headless: exit 0, 4 screenshots not blank, nothing left running ($((SECONDS - started)) s)"
+  else
+    fail "scripts/demo --headless (log: $log):"
+    printf '    %s\n' "${problems[@]}"
+    tail -n 15 "$log" | sed 's/^/  | /'
+  fi
+}
