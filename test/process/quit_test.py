@@ -43,7 +43,7 @@ class QuitTest(unittest.TestCase):
         pid = self.rviz.pid
         shown = wait_for(lambda: not self.rviz.alive() or
                          (self.x.main_window(pid) and self.x.mapped_output_windows(pid)), START_TIMEOUT, 0.1)
-        self.assertTrue(self.rviz.alive(), "rviz ended during start-up:\n" + self.rviz.log_tail())
+        self.assertTrue(self.rviz.alive(), "rviz ended during start-up (%s):\n%s" % (self.rviz.status(), self.rviz.log_tail()))
         self.assertTrue(shown, "no rviz main window and 'Projector: Projector' output window mapped within %.0f s "
                         "(mapped windows of rviz: %s)\n%s" % (START_TIMEOUT, describe(self.x.mapped_windows_of(pid)),
                                                              self.rviz.log_tail()))

@@ -101,7 +101,7 @@ class ReloadConfigTest(unittest.TestCase):
         self.rviz = RvizProcess(configs[1], node_name=NODE, label="reload_config")
         pid = self.rviz.pid
         shown = wait_for(lambda: not self.rviz.alive() or self.x.mapped_output_windows(pid), START_TIMEOUT, 0.1)
-        self.assertTrue(self.rviz.alive(), "rviz ended during start-up:\n" + self.rviz.log_tail())
+        self.assertTrue(self.rviz.alive(), "rviz ended during start-up (%s):\n%s" % (self.rviz.status(), self.rviz.log_tail()))
         self.assertTrue(shown, "output window not mapped within %.0f s\n%s" % (START_TIMEOUT, self.rviz.log_tail()))
         service = "/%s/load_config_discarding_changes" % NODE
         rospy.wait_for_service(service, timeout=START_TIMEOUT)

@@ -166,6 +166,8 @@ class RvizProcess(object):
         self.home = tempfile.mkdtemp(prefix="rviz_process_test_home_")
         env = dict(os.environ)
         env["HOME"] = self.home
+        # stdout is a file: line by line, so that a crash does not swallow the last lines.
+        env["ROSCONSOLE_STDOUT_LINE_BUFFERED"] = "1"
         if sanitize_run():
             # The plugin is instrumented, the rviz binary is not: the ASan runtime must come first.
             env["LD_PRELOAD"] = _asan_runtime()
@@ -190,6 +192,18 @@ class RvizProcess(object):
 
     def signal(self, sig):
         self.proc.send_signal(sig)
+
+    def status(self):
+        """'running', 'exit status N' or 'killed by SIGxxx'."""
+        rc = self.proc.poll()
+        if rc is None:
+            return "running"
+        if rc < 0:
+            try:
+                return "killed by %s" % signal.Signals(-rc).name
+            except ValueError:
+                return "killed by signal %d" % -rc
+        return "exit status %d" % rc
 
     def log_tail(self, lines=25):
         self.log.flush()
