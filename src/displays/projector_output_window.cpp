@@ -17,6 +17,8 @@ ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_scr
 {
   setWindowTitle(title);
   setAttribute(Qt::WA_DeleteOnClose, false);
+  // rviz's main window is the application: closing it must quit even while this one is shown.
+  setAttribute(Qt::WA_QuitOnClose, false);
   QPalette black = palette();
   black.setColor(QPalette::Window, Qt::black);
   setPalette(black);
