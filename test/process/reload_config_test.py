@@ -30,6 +30,7 @@ PKG = "rviz_projector"
 NODE = "rviz_under_test"
 RELOADS = 20
 START_TIMEOUT = 40.0
+WINDOW_TIMEOUT = 15.0
 CALL_TIMEOUT = 20.0  # one config load (a new projector window and render window) on software GL
 CONFIGS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "configs")
 
@@ -96,8 +97,8 @@ class ReloadConfigTest(unittest.TestCase):
         return result["response"], None
 
     def test_reload_configs_while_rendering(self):
-        configs = [os.path.join(CONFIGS, "projector_full_screen.rviz"),
-                   os.path.join(CONFIGS, "projector_windowed.rviz")]
+        configs = [os.path.join(CONFIGS, "reload_full_screen.rviz"),
+                   os.path.join(CONFIGS, "reload_windowed.rviz")]
         self.rviz = RvizProcess(configs[1], node_name=NODE, label="reload_config")
         pid = self.rviz.pid
         shown = wait_for(lambda: not self.rviz.alive() or self.x.mapped_output_windows(pid), START_TIMEOUT, 0.1)
@@ -107,17 +108,25 @@ class ReloadConfigTest(unittest.TestCase):
         rospy.wait_for_service(service, timeout=START_TIMEOUT)
         proxy = rospy.ServiceProxy(service, SendFilePath)
 
+        old_windows = set(w["id"] for w in self.x.mapped_output_windows(pid))
         started = time.monotonic()
         published_before = self.published
         for i in range(RELOADS):
             config = configs[i % 2]
             response, error = self.call(proxy, config)
             self.assertIsNone(error, "load %d of %d (%s): %s; rviz %s\n%s"
-                              % (i + 1, RELOADS, os.path.basename(config), error,
-                                 "alive" if self.rviz.alive() else
-                                 "exited with status %s" % self.rviz.proc.returncode, self.rviz.log_tail()))
+                              % (i + 1, RELOADS, os.path.basename(config), error, self.rviz.status(),
+                                 self.rviz.log_tail()))
             self.assertTrue(response.success, "load %d of %d (%s) reported failure"
                             % (i + 1, RELOADS, os.path.basename(config)))
+            # The new config's projector renders (its own, new output window is up) before the
+            # next load comes in.
+            window = wait_for(lambda: [w for w in self.x.mapped_output_windows(pid) if w["id"] not in old_windows],
+                              WINDOW_TIMEOUT, 0.02)
+            self.assertTrue(window, "load %d of %d (%s): no new output window within %.0f s (rviz %s; mapped "
+                            "windows of rviz: %s)" % (i + 1, RELOADS, os.path.basename(config), WINDOW_TIMEOUT,
+                                                      self.rviz.status(), describe(self.x.mapped_windows_of(pid))))
+            old_windows = set(w["id"] for w in window)
         elapsed = time.monotonic() - started
         print("%d config loads in %.1f s while %d paths were published"
               % (RELOADS, elapsed, self.published - published_before))
@@ -125,8 +134,7 @@ class ReloadConfigTest(unittest.TestCase):
                                 "the path did not stream at 20 Hz during the loads")
 
         # Still alive and answering: a call that loads nothing (no such file) answers 'false'.
-        self.assertTrue(self.rviz.alive(), "rviz exited (status %s)\n%s"
-                        % (self.rviz.proc.returncode, self.rviz.log_tail()))
+        self.assertTrue(self.rviz.alive(), "rviz ended (%s)\n%s" % (self.rviz.status(), self.rviz.log_tail()))
         response, error = self.call(proxy, os.path.join(CONFIGS, "no_such_config.rviz"))
         self.assertIsNone(error, "rviz stopped answering: %s" % error)
         self.assertFalse(response.success)

@@ -99,12 +99,13 @@ class XWindows(object):
                     title = self._title(w)
                     if not title:
                         continue
+                    pid = self._pid(w)
                     attrs = w.get_attributes()
                     geo = w.get_geometry()
                     pos = self.root.translate_coords(w, 0, 0)
                 except XError:
-                    continue
-                found.append({"id": w.id, "window": w, "title": title, "pid": self._pid(w),
+                    continue  # destroyed meanwhile
+                found.append({"id": w.id, "window": w, "title": title, "pid": pid,
                               "mapped": attrs.map_state == X.IsViewable,
                               "x": pos.x, "y": pos.y, "width": geo.width, "height": geo.height})
         return found
