@@ -102,8 +102,10 @@ class ReloadConfigTest(unittest.TestCase):
         self.rviz = RvizProcess(configs[1], node_name=NODE, label="reload_config")
         pid = self.rviz.pid
         shown = wait_for(lambda: not self.rviz.alive() or self.x.mapped_output_windows(pid), START_TIMEOUT, 0.1)
-        self.assertTrue(self.rviz.alive(), "rviz ended during start-up (%s):\n%s" % (self.rviz.status(), self.rviz.log_tail()))
-        self.assertTrue(shown, "output window not mapped within %.0f s\n%s" % (START_TIMEOUT, self.rviz.log_tail()))
+        self.assertTrue(self.rviz.alive(),
+                        "rviz ended during start-up (%s):\n%s" % (self.rviz.status(), self.rviz.log_tail()))
+        self.assertTrue(shown,
+                        "output window not mapped within %.0f s\n%s" % (START_TIMEOUT, self.rviz.log_tail()))
         service = "/%s/load_config_discarding_changes" % NODE
         rospy.wait_for_service(service, timeout=START_TIMEOUT)
         proxy = rospy.ServiceProxy(service, SendFilePath)
@@ -121,8 +123,11 @@ class ReloadConfigTest(unittest.TestCase):
                             % (i + 1, RELOADS, os.path.basename(config)))
             # The new config's projector renders (its own, new output window is up) before the
             # next load comes in.
-            window = wait_for(lambda: [w for w in self.x.mapped_output_windows(pid) if w["id"] not in old_windows],
+            window = wait_for(lambda: not self.rviz.alive() or
+                              [w for w in self.x.mapped_output_windows(pid) if w["id"] not in old_windows],
                               WINDOW_TIMEOUT, 0.02)
+            self.assertTrue(self.rviz.alive(), "load %d of %d (%s): rviz %s after the load\n%s"
+                            % (i + 1, RELOADS, os.path.basename(config), self.rviz.status(), self.rviz.log_tail()))
             self.assertTrue(window, "load %d of %d (%s): no new output window within %.0f s (rviz %s; mapped "
                             "windows of rviz: %s)" % (i + 1, RELOADS, os.path.basename(config), WINDOW_TIMEOUT,
                                                       self.rviz.status(), describe(self.x.mapped_windows_of(pid))))

@@ -180,15 +180,18 @@ class RvizProcess(object):
             [binaries[0], "-d", config, "--disable-anti-aliasing", "__name:=" + node_name],
             stdin=subprocess.DEVNULL, stdout=self.log, stderr=subprocess.STDOUT, env=env)
         self.pid = self.proc.pid
+        self.exit_time = None
 
     def alive(self):
         return self.proc.poll() is None
 
     def wait_exit(self, timeout):
-        """Seconds until the process exited (polling), or None if it still runs after timeout."""
+        """Seconds until the process exited (polling every 10 ms), or None if it still runs after
+        timeout. exit_time: time.monotonic() when the exit was seen."""
         start = time.monotonic()
-        if wait_for(lambda: not self.alive(), timeout, period=0.01):
-            return time.monotonic() - start
+        if wait_for(lambda: not self.alive(), max(0.0, timeout), period=0.01):
+            self.exit_time = time.monotonic()
+            return self.exit_time - start
         return None
 
     def signal(self, sig):
