@@ -175,6 +175,10 @@ class RvizProcess(object):
             # Leaks of rviz itself (uninstrumented, third-party) are not ours to report, and a leak
             # check at exit would also slow the exit the quit tests time.
             env["ASAN_OPTIONS"] = (env.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":")
+            # Seen here: with the runtime preloaded into rviz and a UTF-8 locale, Mesa's driconf
+            # (regcomp while the first GL window is created) deadlocks on glibc's locale lock.
+            # The C locale needs no conversion module loaded, so that lock is never taken.
+            env["LC_ALL"] = "C"
         self.log = open(self.log_path, "w")
         self.proc = subprocess.Popen(
             [binaries[0], "-d", config, "--disable-anti-aliasing", "__name:=" + node_name],
