@@ -20,7 +20,7 @@ rp_packages() {
   local common="build-essential cmake xvfb xauth x11-utils x11-xserver-utils x11-apps imagemagick
     libgl1-mesa-dri mesa-utils xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
     libbenchmark-dev qtbase5-dev libx11-dev libxext-dev libxdamage-dev libxfixes-dev
-    libyaml-cpp-dev"
+    libyaml-cpp-dev xdotool python3-xlib"
   if rp_is_noetic_ubuntu; then
     echo "$common python3-catkin-pkg ros-noetic-catkin ros-noetic-roscpp ros-noetic-rviz ros-noetic-pluginlib
       ros-noetic-nav-msgs ros-noetic-sensor-msgs ros-noetic-geometry-msgs ros-noetic-visualization-msgs
@@ -33,7 +33,7 @@ rp_packages() {
       libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
       librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
-      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev"
+      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev python3-nav-msgs python3-sensor-msgs python3-rviz"
   fi
 }
 
