@@ -112,13 +112,6 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
 ProjectedPathDisplay::~ProjectedPathDisplay()
 {
   drain_timer_.stop();
-  // The subscription and the tf filter hold the private queue: both go before it does.
-  if (initialized())
-  {
-    unsubscribe();
-    delete tf_filter_;
-    tf_filter_ = nullptr;
-  }
 }
 
 void ProjectedPathDisplay::onInitialize()

@@ -27,7 +27,20 @@ namespace rviz_projector
 {
 class FloorMesh;
 
-class ProjectedPathDisplay : public rviz::MessageFilterDisplay<nav_msgs::Path>
+/// Owns the private callback queue of ProjectedPathDisplay. A base class listed before rviz's
+/// MessageFilterDisplay, so the queue outlives the subscriber and tf filter that hold it (the
+/// filter's destructor still removes its callbacks from the queue).
+struct PrivateCallbackQueue
+{
+  ros::CallbackQueue path_queue_;
+};
+
+/// The base of ProjectedPathDisplay: rviz's MessageFilterDisplay, destroyed before the queue.
+class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFilterDisplay<nav_msgs::Path>
+{
+};
+
+class ProjectedPathDisplay : public ProjectedPathBase
 {
   Q_OBJECT
 public:
@@ -86,10 +99,9 @@ private:
   rviz::FloatProperty* height_property_;
   rviz::EnumProperty* style_property_;
 
-  // Paths arrive on a queue of this display's own, drained every few milliseconds by its timer:
-  // a new plan reaches the projector without waiting for rviz's next main-view frame, and nobody
-  // spins rviz's global queue from inside a display.
-  ros::CallbackQueue path_queue_;
+  // Paths arrive on a queue of this display's own (path_queue_), drained every few milliseconds by
+  // its timer: a new plan reaches the projector without waiting for rviz's next main-view frame,
+  // and nobody spins rviz's global queue from inside a display.
   QTimer drain_timer_;
   PathSpacer spacer_;
   const SpacedPath* spaced_;
