@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <QImage>
+#include <QRect>
 #include <QString>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Path.h>
@@ -47,6 +48,8 @@ geometry_msgs::TransformStamped projectorMount(const std::string& parent, const 
 
 /// ProjectorOutputWindows that exist (`visible_only`: that are shown).
 int projectorWindows(bool visible_only);
+/// Where an image of image_width x image_height is shown in a window (the letterbox), by hand.
+void imageRectangle(int window_width, int window_height, int image_width, int image_height, QRect& rectangle);
 /// Renders the projector view now and reads its window back from the X server (what it shows),
 /// letterbox removed.
 QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector);
