@@ -366,7 +366,7 @@ TEST_F(ProjectorRegression, ImageOutputOfAScaledWindowPublishesAMatchingCameraIn
   ASSERT_TRUE(waitFor([&] {
     projector->renderNow();
     return image && published && image->header.stamp == published->header.stamp && image->encoding == "rgb8" &&
-           image->width < 854 && greenCentroid(*image, u, v, green) && green > 100;
+           greenCentroid(*image, u, v, green) && green > 100;
   }, 10.0)) << "no image + camera_info pair showing the target (window 854x480)";
 
   EXPECT_EQ(published->width, image->width) << "CameraInfo size = image size";
@@ -395,28 +395,6 @@ TEST_F(ProjectorRegression, ImageOutputOfAScaledWindowPublishesAMatchingCameraIn
               image->width, image->height, published->width, published->height, published->P[0], published->P[2],
               published->P[6], u, v, green, expected.x, expected.y, error);
   EXPECT_LE(error, 0.25);
-  // For the record (not a check of defect 5): where the output window shows the disc.
-  double wu = 0, wv = 0;
-  int wn = 0;
-  const QImage shown = grabProjector(projector);
-  sensor_msgs::Image as_image;
-  as_image.width = static_cast<std::uint32_t>(shown.width());
-  as_image.height = static_cast<std::uint32_t>(shown.height());
-  as_image.step = as_image.width * 3;
-  for (int row = 0; row < shown.height(); ++row)
-  {
-    as_image.data.insert(as_image.data.end(), shown.constScanLine(row), shown.constScanLine(row) + as_image.step);
-  }
-  image_geometry::PinholeCameraModel full;
-  full.fromCameraInfo(info);
-  const cv::Point2d at = projectedDiscCentroid(full, optical_in_map, disc_x, disc_y, diameter);
-  const double s = double(shown.width()) / info.width;  // pixel centres: (u + 0.5) * s - 0.5
-  if (greenCentroid(as_image, wu, wv, wn))
-  {
-    std::printf("the output window shows the disc at (%.3f, %.3f) of its %dx%d image area; the 1024x768 model "
-                "scaled by hand puts it at (%.3f, %.3f)\n",
-                wu, wv, shown.width(), shown.height(), (at.x + 0.5) * s - 0.5, (at.y + 0.5) * s - 0.5);
-  }
 }
 
 // ---- Defect 7: screens and the windowed geometry ----------------------------------------------
