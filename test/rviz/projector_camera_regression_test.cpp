@@ -52,35 +52,6 @@ const QRgb kYellow = qRgb(255, 255, 0);
 constexpr double kHeight = 1.2, kPitch = 0.9;
 
 std::string text(const Status& s) { return s.text.toStdString(); }
-
-rviz::Display* displayNamed(rviz::VisualizationManager* manager, const QString& name)
-{
-  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
-  for (int i = 0; i < group->numDisplays(); ++i)
-  {
-    if (group->getDisplayAt(i)->getName() == name)
-    {
-      return group->getDisplayAt(i);
-    }
-  }
-  return nullptr;
-}
-
-/// Moves `display` to `row` of the root display group, as drag and drop in the Displays panel.
-void moveDisplay(rviz::VisualizationManager* manager, rviz::Display* display, int row)
-{
-  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
-  ASSERT_EQ(group->takeDisplay(display), display);
-  // DisplayGroup::addChild counts its non-display properties first.
-  group->addChild(display, group->rviz::Property::numChildren() + row);
-  ASSERT_EQ(group->getDisplayAt(row), display);
-}
-
-int screenIndexOf(const QWidget* window)
-{
-  const QScreen* screen = QGuiApplication::screenAt(window->geometry().center());
-  return QGuiApplication::screens().indexOf(const_cast<QScreen*>(screen));
-}
 }  // namespace
 
 class ProjectorRegression : public rviz_projector_test::RvizTest
@@ -219,20 +190,20 @@ TEST_F(ProjectorRegression, VisibilityTicksFollowTheDisplaysThroughMovesRemovals
   expectTicks(projector, ticked, unticked, {kMagenta}, {kCyan, kYellow}, "as set");
 
   // Drag the cyan path to the top of the list, then the projector itself below the grid.
-  moveDisplay(rviz_->manager(), displayNamed(rviz_->manager(), "Cyan path"), 0);
+  rviz_projector_test::moveDisplay(rviz_->manager(), rviz_projector_test::displayNamed(rviz_->manager(), "Cyan path"), 0);
   expectTicks(projector, ticked, unticked, {kMagenta}, {kCyan, kYellow}, "cyan path moved to the top");
-  moveDisplay(rviz_->manager(), projector, 1);
+  rviz_projector_test::moveDisplay(rviz_->manager(), projector, 1);
   expectTicks(projector, ticked, unticked, {kMagenta}, {kCyan, kYellow}, "projector moved up");
-  moveDisplay(rviz_->manager(), displayNamed(rviz_->manager(), "Magenta path"), 0);
+  rviz_projector_test::moveDisplay(rviz_->manager(), rviz_projector_test::displayNamed(rviz_->manager(), "Magenta path"), 0);
   expectTicks(projector, ticked, unticked, {kMagenta}, {kCyan, kYellow}, "magenta path moved to the top");
 
   // Remove the display above the others; add a new one (a foreign display: unticked by default)
   // and move it to the top.
-  delete displayNamed(rviz_->manager(), "Magenta path");
+  delete rviz_projector_test::displayNamed(rviz_->manager(), "Magenta path");
   addPath("Magenta path 2", "/regression/plan", 0.5, 2.2, 0.0, kMagenta);
-  moveDisplay(rviz_->manager(), displayNamed(rviz_->manager(), "Magenta path 2"), 0);
+  rviz_projector_test::moveDisplay(rviz_->manager(), rviz_projector_test::displayNamed(rviz_->manager(), "Magenta path 2"), 0);
   rviz::Display* grid2 = addGrid("Floor grid 2");
-  moveDisplay(rviz_->manager(), grid2, 0);
+  rviz_projector_test::moveDisplay(rviz_->manager(), grid2, 0);
   const std::set<QString> ticked2{"Magenta path 2"}, unticked2{"Floor grid", "Floor grid 2", "Cyan path"};
   expectTicks(projector, ticked2, unticked2, {kMagenta}, {kCyan, kYellow}, "removed, added, moved");
 
@@ -313,7 +284,8 @@ cv::Point2d projectedDiscCentroid(const image_geometry::PinholeCameraModel& mode
   for (int i = 0; i < kPoints; ++i)
   {
     const double a = 2.0 * M_PI * i / kPoints;
-    const tf2::Vector3 p = map_to_optical * tf2::Vector3(x + 0.5 * diameter * std::cos(a), y + 0.5 * diameter * std::sin(a), 0);
+    const double r = 0.5 * diameter;
+    const tf2::Vector3 p = map_to_optical * tf2::Vector3(x + r * std::cos(a), y + r * std::sin(a), 0);
     outline.push_back(model.project3dToPixel(cv::Point3d(p.x(), p.y(), p.z())));
   }
   double area = 0, sx = 0, sy = 0;
@@ -411,10 +383,10 @@ TEST_F(ProjectorRegression, TwoAutomaticProjectorsDoNotStackOnOneScreen)
   info_pub_.publish(good_);
   ASSERT_TRUE(projectorShows(first) && projectorShows(second));
   const bool apart = waitFor([&] {
-    return screenIndexOf(first->outputWindow()) != screenIndexOf(second->outputWindow()) ||
+    return rviz_projector_test::screenIndexOf(first->outputWindow()) != rviz_projector_test::screenIndexOf(second->outputWindow()) ||
            statusOf(second, "Output").level == rviz::StatusProperty::Warn;
   }, 3.0);
-  EXPECT_TRUE(apart) << "both on screen " << screenIndexOf(first->outputWindow()) << "; second's Output status: "
+  EXPECT_TRUE(apart) << "both on screen " << rviz_projector_test::screenIndexOf(first->outputWindow()) << "; second's Output status: "
                      << text(statusOf(second, "Output"));
 }
 
@@ -621,4 +593,17 @@ TEST_F(ProjectorRegression, InvalidArrowsAreNotCountedAsDrawn)
   // Flat arrows are 3 triangles each: what the status counts is what the mesh draws.
   EXPECT_EQ(path->arrowTriangleCount(), 3 * valid);
   EXPECT_FALSE(rviz_->renderMainView().isNull());
+}
+
+// Found while writing the test above (bad input never crashes): a finite path whose destination
+// is at x = 1e308 aborts rviz today (OGRE's AxisAlignedBox assertion: the floor mesh's float
+// vertices overflow).
+TEST_F(ProjectorRegression, DestinationAtTheEndOfTheDoubleRangeDoesNotCrashRviz)
+{
+  rviz::Display* path = rviz_->addDisplay("rviz_projector/ProjectedPath", "Path");
+  path->subProp("Topic")->setValue("/regression/far");
+  ros::Publisher pub = nh_.advertise<nav_msgs::Path>("/regression/far", 1, true);
+  pub.publish(makePath("map", {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1e308, 0, 0}}));
+  ASSERT_TRUE(waitFor([&] { return statusOf(path, "Path").text.contains("arrows"); })) << text(statusOf(path, "Path"));
+  EXPECT_FALSE(rviz_->renderMainView().isNull()) << "rviz keeps rendering";
 }

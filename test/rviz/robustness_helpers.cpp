@@ -272,6 +272,35 @@ std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager,
   return found;
 }
 
+rviz::Display* displayNamed(rviz::VisualizationManager* manager, const QString& name)
+{
+  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    if (group->getDisplayAt(i)->getName() == name)
+    {
+      return group->getDisplayAt(i);
+    }
+  }
+  return nullptr;
+}
+
+void moveDisplay(rviz::VisualizationManager* manager, rviz::Display* display, int row)
+{
+  ASSERT_NE(display, nullptr);
+  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
+  ASSERT_EQ(group->takeDisplay(display), display);
+  // DisplayGroup::addChild counts its non-display properties first.
+  group->addChild(display, group->rviz::Property::numChildren() + row);
+  ASSERT_EQ(group->getDisplayAt(row), display);
+}
+
+int screenIndexOf(const QWidget* window)
+{
+  QScreen* screen = QGuiApplication::screenAt(window->geometry().center());
+  return screen ? QGuiApplication::screens().indexOf(screen) : -1;
+}
+
 QString configFile(const char* name)
 {
   return QString(RVIZ_PROJECTOR_TEST_CONFIGS) + "/" + name;

@@ -30,6 +30,7 @@ namespace rviz_projector
 {
 class ProjectorCameraDisplay;
 }
+class QWidget;
 
 namespace rviz_projector_test
 {
@@ -81,6 +82,12 @@ bool underAddressSanitizer();
 std::string loadRvizFile(rviz::VisualizationManager* manager, const QString& file);
 /// Displays of the root group with this class id, in order.
 std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager, const QString& class_id);
+/// Display of the root group named `name` (nullptr if none).
+rviz::Display* displayNamed(rviz::VisualizationManager* manager, const QString& name);
+/// Moves `display` to `row` of the root display group, as drag and drop in the Displays panel.
+void moveDisplay(rviz::VisualizationManager* manager, rviz::Display* display, int row);
+/// Index in QGuiApplication::screens() of the screen holding the centre of `window` (-1: none).
+int screenIndexOf(const QWidget* window);
 /// Path of a file in test/rviz/configs.
 QString configFile(const char* name);
 }  // namespace rviz_projector_test
