@@ -593,7 +593,7 @@ void ProjectorCameraDisplay::onFrameTimer()
 
 void ProjectorCameraDisplay::renderNow()
 {
-  if (!isEnabled() || !output_ || !output_->isShown() || !prepareFrame())
+  if (!isEnabled() || !output_ || !output_->isExposed() || !prepareFrame())
   {
     return;
   }

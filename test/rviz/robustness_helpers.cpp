@@ -1,21 +1,26 @@
 #include "robustness_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
 #include <OgreCamera.h>
+#include <OgreException.h>
 #include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
 #include <OgreRenderTarget.h>
+#include <OgreRenderWindow.h>
 #include <OgreRoot.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 #include <QApplication>
 #include <QGuiApplication>
 #include <QScreen>
-#include <QThread>
 #include <QWindow>
 #include <rviz/config.h>
 #include <rviz/display.h>
@@ -95,6 +100,59 @@ int projectorWindows(bool visible_only)
   return n;
 }
 
+namespace
+{
+/// Returns once the X server has processed everything OGRE sent on its connection, the swapped
+/// frame included (XSync on that connection, shared by all of OGRE's GLX windows; a grab through
+/// Qt's connection then sees the frame). libX11 is in the process already (OGRE's GLX uses it):
+/// looked up at run time, so that the tests need not link it. False without such a connection.
+bool syncWithTheXServer()
+{
+  void* display = nullptr;
+  auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
+  while (display == nullptr && targets.hasMoreElements())
+  {
+    Ogre::RenderTarget* target = targets.getNext();
+    try
+    {
+      if (dynamic_cast<Ogre::RenderWindow*>(target) != nullptr)
+      {
+        target->getCustomAttribute("XDISPLAY", &display);
+      }
+    }
+    catch (const Ogre::Exception&)
+    {
+      display = nullptr;  // not an X window
+    }
+  }
+  using XSyncFunction = int (*)(void*, int);
+  static const auto xsync = reinterpret_cast<XSyncFunction>(dlsym(RTLD_DEFAULT, "XSync"));
+  if (display == nullptr || xsync == nullptr)
+  {
+    return false;
+  }
+  xsync(display, 0);
+  return true;
+}
+}  // namespace
+
+void imageRectangle(int window_width, int window_height, int image_width, int image_height, QRect& rectangle)
+{
+  // Computed here by hand (the test's own oracle): an image that fits exactly along one axis and
+  // is not larger along the other is shown 1:1; otherwise scaled by min(ww / iw, wh / ih), the
+  // sizes rounded; centred, the offsets rounded down.
+  int w = image_width, h = image_height;
+  const bool one_to_one = image_width <= window_width && image_height <= window_height &&
+                          (image_width == window_width || image_height == window_height);
+  if (!one_to_one)
+  {
+    const double scale = std::min(double(window_width) / image_width, double(window_height) / image_height);
+    w = std::max(1, static_cast<int>(std::lround(image_width * scale)));
+    h = std::max(1, static_cast<int>(std::lround(image_height * scale)));
+  }
+  rectangle = QRect((window_width - w) / 2, (window_height - h) / 2, w, h);
+}
+
 QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector)
 {
   rviz_projector::ProjectorOutputWindow* window = projector ? projector->outputWindow() : nullptr;
@@ -103,16 +161,21 @@ QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector)
     return QImage();
   }
   projector->renderNow();
-  for (int i = 0; i < 20; ++i)
+  QApplication::processEvents();
+  if (!syncWithTheXServer())
   {
-    QApplication::processEvents(QEventLoop::AllEvents, 5);
-    QThread::msleep(5);
+    ADD_FAILURE() << "no X connection behind the projector's render window: cannot tell when it shows a frame";
   }
   QScreen* screen = window->windowHandle() ? window->windowHandle()->screen() : QGuiApplication::primaryScreen();
   const QImage whole = screen->grabWindow(window->winId()).toImage().convertToFormat(QImage::Format_RGB888);
-  int left, top, width, height;
-  projector->viewportPixels(left, top, width, height);
-  return whole.copy(left, top, width, height);
+  if (!projector->hasLens())
+  {
+    return whole;
+  }
+  QRect image;
+  imageRectangle(whole.width(), whole.height(), static_cast<int>(projector->lens().width()),
+                 static_cast<int>(projector->lens().height()), image);
+  return whole.copy(image);
 }
 
 std::string OgreCounts::describe() const
@@ -207,6 +270,35 @@ std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager,
     }
   }
   return found;
+}
+
+rviz::Display* displayNamed(rviz::VisualizationManager* manager, const QString& name)
+{
+  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    if (group->getDisplayAt(i)->getName() == name)
+    {
+      return group->getDisplayAt(i);
+    }
+  }
+  return nullptr;
+}
+
+void moveDisplay(rviz::VisualizationManager* manager, rviz::Display* display, int row)
+{
+  ASSERT_NE(display, nullptr);
+  rviz::DisplayGroup* group = manager->getRootDisplayGroup();
+  ASSERT_EQ(group->takeDisplay(display), display);
+  // DisplayGroup::addChild counts its non-display properties first.
+  group->addChild(display, group->rviz::Property::numChildren() + row);
+  ASSERT_EQ(group->getDisplayAt(row), display);
+}
+
+int screenIndexOf(const QWidget* window)
+{
+  QScreen* screen = QGuiApplication::screenAt(window->geometry().center());
+  return screen ? QGuiApplication::screens().indexOf(screen) : -1;
 }
 
 QString configFile(const char* name)

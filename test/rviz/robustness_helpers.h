@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <QImage>
+#include <QRect>
 #include <QString>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Path.h>
@@ -29,6 +30,7 @@ namespace rviz_projector
 {
 class ProjectorCameraDisplay;
 }
+class QWidget;
 
 namespace rviz_projector_test
 {
@@ -47,6 +49,8 @@ geometry_msgs::TransformStamped projectorMount(const std::string& parent, const 
 
 /// ProjectorOutputWindows that exist (`visible_only`: that are shown).
 int projectorWindows(bool visible_only);
+/// Where an image of image_width x image_height is shown in a window (the letterbox), by hand.
+void imageRectangle(int window_width, int window_height, int image_width, int image_height, QRect& rectangle);
 /// Renders the projector view now and reads its window back from the X server (what it shows),
 /// letterbox removed.
 QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector);
@@ -78,6 +82,12 @@ bool underAddressSanitizer();
 std::string loadRvizFile(rviz::VisualizationManager* manager, const QString& file);
 /// Displays of the root group with this class id, in order.
 std::vector<rviz::Display*> displaysOfClass(rviz::VisualizationManager* manager, const QString& class_id);
+/// Display of the root group named `name` (nullptr if none).
+rviz::Display* displayNamed(rviz::VisualizationManager* manager, const QString& name);
+/// Moves `display` to `row` of the root display group, as drag and drop in the Displays panel.
+void moveDisplay(rviz::VisualizationManager* manager, rviz::Display* display, int row);
+/// Index in QGuiApplication::screens() of the screen holding the centre of `window` (-1: none).
+int screenIndexOf(const QWidget* window);
 /// Path of a file in test/rviz/configs.
 QString configFile(const char* name);
 }  // namespace rviz_projector_test
