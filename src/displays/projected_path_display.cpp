@@ -307,13 +307,13 @@ void ProjectedPathDisplay::rebuild()
   if (!spaced_->has_destination)
   {
     setStatus(rviz::StatusProperty::Warn, "Path",
-              dropped > 0 ? QString("All %1 poses have NaN/Inf values: nothing to draw").arg(dropped)
+              dropped > 0 ? QString("All %1 poses have NaN/Inf or out-of-range values: nothing to draw").arg(dropped)
                           : QString("Empty path (no poses): nothing to draw"));
   }
   else if (dropped > 0)
   {
     setStatus(rviz::StatusProperty::Warn, "Path",
-              QString("%1 poses with NaN/Inf values dropped; %2 arrows drawn").arg(dropped).arg(drawn));
+              QString("%1 poses with NaN/Inf or out-of-range values dropped; %2 arrows drawn").arg(dropped).arg(drawn));
   }
   else if (spaced_->truncated)
   {

@@ -223,7 +223,7 @@ private:
     const std::size_t dropped = pathToFloorPoints(*msg, to_target, points_);
     if (dropped > 0)
     {
-      ROS_WARN_THROTTLE(kWarnPeriod, "%s: %zu of %zu path poses have NaN/Inf values and were dropped", kName, dropped,
+      ROS_WARN_THROTTLE(kWarnPeriod, "%s: %zu of %zu path poses have NaN/Inf or out-of-range values and were dropped", kName, dropped,
                         msg->poses.size());
     }
     publish(header);

@@ -1,5 +1,7 @@
 #include "rviz_projector/ros/ros_conversions.h"
 
+#include "rviz_projector/core/path_style_limits.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -27,6 +29,11 @@ std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& 
     }
     const geometry_msgs::Point& p = stamped.pose.position;
     const Vec3 q = path_to_target.apply(Vec3{p.x, p.y, p.z});
+    if (!(std::abs(q.x) <= path_style::kMaxFloorCoordinate && std::abs(q.y) <= path_style::kMaxFloorCoordinate))
+    {
+      ++dropped;  // out of range: cannot be drawn (and overflows transforms of 1e308)
+      continue;
+    }
     out.push_back(Vec2{q.x, q.y});
   }
   return dropped;

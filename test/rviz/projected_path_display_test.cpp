@@ -313,7 +313,7 @@ TEST_F(ProjectedPathTest, NanPosesAreDroppedWithAWarning)
   publishAndWait(path, 6);
   const Status s = statusOf(display_, "Path");
   EXPECT_EQ(s.level, rviz::StatusProperty::Warn);
-  EXPECT_EQ(s.text.toStdString(), "2 poses with NaN/Inf values dropped; 6 arrows drawn");
+  EXPECT_EQ(s.text.toStdString(), "2 poses with NaN/Inf or out-of-range values dropped; 6 arrows drawn");
 
   nav_msgs::Path one = straightPath("odom", 0.0);
   ASSERT_EQ(one.poses.size(), 1u);

@@ -181,7 +181,7 @@ TEST_F(PathRobustness, NanAndInfInSomePoses)
   ASSERT_TRUE(publishAndWait(p));
   const std::size_t arrows = rviz_projector_test::defaultExactArrows(2.9);
   EXPECT_EQ(path().level, rviz::StatusProperty::Warn);
-  EXPECT_EQ(text(path()), "5 poses with NaN/Inf values dropped; " + std::to_string(arrows) + " arrows drawn");
+  EXPECT_EQ(text(path()), "5 poses with NaN/Inf or out-of-range values dropped; " + std::to_string(arrows) + " arrows drawn");
   EXPECT_EQ(display_->spacedPath().arrows.size(), arrows);
   EXPECT_NEAR(display_->spacedPath().destination.x, 1.0 + 2.9, 1e-9);
   for (const auto& a : display_->spacedPath().arrows)
@@ -216,7 +216,7 @@ TEST_F(PathRobustness, NanOrInfInAllPoses)
     }
     ASSERT_TRUE(publishAndWait(p)) << c.what;
     EXPECT_EQ(path().level, rviz::StatusProperty::Warn) << c.what;
-    EXPECT_EQ(text(path()), "All 21 poses have NaN/Inf values: nothing to draw") << c.what;
+    EXPECT_EQ(text(path()), "All 21 poses have NaN/Inf or out-of-range values: nothing to draw") << c.what;
     EXPECT_EQ(display_->arrowTriangleCount(), 0u) << c.what;
     EXPECT_EQ(display_->circleTriangleCount(), 0u) << c.what;
   }

@@ -23,6 +23,12 @@ constexpr double kMaxSize = 10.0;
 constexpr double kMaxHeight = 10.0;
 /// Default height: a little lift avoids fighting with a grid or map on the floor.
 constexpr double kDefaultHeight = 0.01;
+/**
+ * Largest floor coordinate drawn, metres (a trillion: far beyond any map, yet its arrows still
+ * fit OGRE's single-precision vertices and bounding boxes). Poses beyond it count as unusable,
+ * like NaN/Inf ones.
+ */
+constexpr double kMaxFloorCoordinate = 1e12;
 /// Default opacity (1 opaque).
 constexpr double kDefaultAlpha = 1.0;
 }  // namespace path_style

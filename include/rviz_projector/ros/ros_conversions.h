@@ -20,7 +20,8 @@ bool isFinitePose(const geometry_msgs::Pose& pose);
 
 /**
  * Floor positions (x, y in the target frame) of a path's poses, transformed by `path_to_target`.
- * Poses with a NaN/Inf anywhere are skipped; returns how many. `out` is cleared first and keeps
+ * Poses with a NaN/Inf anywhere, or beyond path_style::kMaxFloorCoordinate on the floor, are
+ * skipped; returns how many. `out` is cleared first and keeps
  * its capacity between calls.
  */
 std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& path_to_target,
