@@ -76,6 +76,6 @@ check_demo_headless() {
   else
     fail "scripts/demo --headless (log: $log):"
     printf '    %s\n' "${problems[@]}"
-    tail -n 15 "$log" | sed 's/^/  | /'
+    tail -n 8 "$log" | sed 's/^/  | /'
   fi
 }
