@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by scripts/demo, scripts/test and scripts/bench: system packages, catkin workspace, build.
 # Source it; it expects `set -euo pipefail` in the caller.
 

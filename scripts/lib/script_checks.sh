@@ -19,7 +19,8 @@ check_rosrun_no_loop() {
   # No master listens on this port: the node starts and keeps retrying to reach it, which shows
   # that rosrun found and started it.
   (
-    export ROS_MASTER_URI="http://localhost:$(rp_free_port)"
+    ROS_MASTER_URI="http://localhost:$(rp_free_port)"
+    export ROS_MASTER_URI
     exec rosrun rviz_projector projector_info_publisher
   ) >"$log" 2>&1 &
   pid=$!
@@ -76,6 +77,6 @@ check_demo_headless() {
   else
     fail "scripts/demo --headless (log: $log):"
     printf '    %s\n' "${problems[@]}"
-    tail -n 15 "$log" | sed 's/^/  | /'
+    tail -n 8 "$log" | sed 's/^/  | /'
   fi
 }

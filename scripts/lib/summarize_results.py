@@ -10,10 +10,11 @@ A skipped test is never counted as passed. gtest (1.12, Debian 12) writes a GTES
 <testcase ... result="skipped"> with a <skipped message="file:line\nreason"> child, and a
 DISABLED_ test as <testcase ... status="notrun">; both count as skipped.
 
-rostest leaves two files per test: the gtest XML of the test node (rosunit-<test>.xml, which
-knows about skips) and its own summary (rostest-<file>.xml, which lists the same test cases but
-drops the skips). Test cases of a rostest summary are counted only when the node's own file is
-missing (no rosunit file: the node crashed, or is not a gtest).
+rostest leaves two files per .test file: the gtest XML of the test node (rosunit-<test>.xml,
+which knows about skips) and its own summary (rostest-<file>.xml) with one wrapper test case
+(rostest.runner.RosTest.test<name>) that fails when the node failed, crashed or timed out. The
+node's test cases are counted from its own file; the wrapper counts only when it failed (a passing
+wrapper would count the whole .test file once more as a pass, even when all its tests skipped).
 """
 import os
 import sys
@@ -89,7 +90,7 @@ def main():
                     text = text_lines(problems[0].get("message") or problems[0].text)
                     failures.append("%s: %s" % (label, " | ".join(text[:3])[:300] if text else problems[0].tag))
                     continue
-                if summary_file and key in node_cases:
+                if summary_file and (key in node_cases or key[0] == "rostest.runner.RosTest"):
                     continue  # counted from rosunit-*.xml, which knows whether it was skipped
                 reason = skip_reason(case)
                 if reason is not None:
