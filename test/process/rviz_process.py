@@ -122,6 +122,11 @@ class XWindows(object):
                 return w
         return None
 
+    def input_focus(self):
+        """Id of the window holding the keyboard focus (0 or 1 for None / PointerRoot)."""
+        focus = self.d.get_input_focus().focus
+        return focus if isinstance(focus, int) else focus.id
+
     def mapped_popups(self):
         """Ids of mapped override-redirect top-level windows (menus, tooltips)."""
         ids = set()
