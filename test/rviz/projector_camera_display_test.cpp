@@ -146,29 +146,21 @@ TEST_F(ProjectorSceneTest, ArrowsReachTheProjectorAndVisibilityHidesThem)
 
 TEST_F(ProjectorSceneTest, OnlyThisPackagesPathDisplaysAreVisibleByDefault)
 {
-  rviz_->addDisplay("rviz/Grid", "Grid");
-  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
-  rviz::Property* visibility = projector_->subProp("Visibility");
-  EXPECT_EQ(visibility->subProp("Grid")->getValue().toBool(), false);
-  EXPECT_EQ(visibility->subProp("Projected path")->getValue().toBool(), true);
-  // The grid lies on the floor in the projector's view; it must not be projected.
-  rviz::Display* grid = nullptr;
-  for (int i = 0; i < rviz_->manager()->getRootDisplayGroup()->numDisplays(); ++i)
-  {
-    if (rviz_->manager()->getRootDisplayGroup()->getDisplayAt(i)->getName() == "Grid")
-    {
-      grid = rviz_->manager()->getRootDisplayGroup()->getDisplayAt(i);
-    }
-  }
+  // A grid on the floor in the projector's view, opaque, bright and thick: were it projected, its
+  // lines x = 1 m and x = 2 m would cross the lit area as wide yellow bands.
+  rviz::Display* grid = rviz_->addDisplay("rviz/Grid", "Grid");
   ASSERT_NE(grid, nullptr);
-  // Opaque, bright and thick: were it projected, its lines x = 1 m and x = 2 m would cross the
-  // lit area as wide yellow bands.
   const QRgb yellow = qRgb(255, 255, 0);
   grid->subProp("Color")->setValue(QColor(255, 255, 0));
   grid->subProp("Alpha")->setValue(1.0);
   grid->subProp("Line Style")->setValue("Billboards");
   grid->subProp("Line Style")->subProp("Line Width")->setValue(0.05);
-  // Judged on a frame that shows our path: the path is projected, the grid is not.
+  // Our path comes after the grid is yellow, so the frame that shows the path shows the grid as
+  // it is now, if at all.
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  rviz::Property* visibility = projector_->subProp("Visibility");
+  EXPECT_EQ(visibility->subProp("Grid")->getValue().toBool(), false);
+  EXPECT_EQ(visibility->subProp("Projected path")->getValue().toBool(), true);
   const QImage frame = imagePart(grabWithArrows());
   EXPECT_GT(countColour(frame, kArrowMagenta), 100) << "the path is projected";
   EXPECT_EQ(countColour(frame, yellow), 0) << "the grid is not";
