@@ -89,7 +89,7 @@ double PixelOracle::depth(const Vec2& floor) const
   return optical(floor).z;
 }
 
-Vec2 PixelOracle::discCentroid(const Vec2& centre, double diameter) const
+Vec2 PixelOracle::discCentroid(const Vec2& centre, double diameter, double* area) const
 {
   // The outline as a fine polygon, projected; its area centroid (shoelace).
   constexpr int kSegments = 720;
@@ -108,6 +108,10 @@ Vec2 PixelOracle::discCentroid(const Vec2& centre, double diameter) const
     sa += cross;
     sx += (a.x + b.x) * cross;
     sy += (a.y + b.y) * cross;
+  }
+  if (area)
+  {
+    *area = std::abs(sa) / 2;
   }
   return Vec2{sx / (3 * sa), sy / (3 * sa)};
 }
@@ -299,16 +303,19 @@ double ProjectorCameraTest::pixelAccuracy(const sensor_msgs::CameraInfo& info, c
     }
     return expected;
   };
-  // Every target shown whole: a disc of kTargetPixels image pixels covers about this many window pixels.
+  // Every target shown (at least half of the window pixels its projected outline covers).
   auto allSeen = [&](const QImage& window) {
     const Letterbox box = oracle.box(window.width(), window.height());
     const double scale = double(box.width) / oracle.imageWidth();
-    const int whole = int(0.5 * M_PI * std::pow(kTargetPixels * scale / 2, 2));
-    for (const Vec2& e : expectedIn(window))
+    const std::vector<Vec2> expected = expectedIn(window);
+    for (std::size_t i = 0; i < expected.size(); ++i)
     {
+      double area = 0.0;
+      oracle.discCentroid(floors[i], diameters[i], &area);
       Vec2 centroid;
       int count = 0;
-      if (!greenCentroid(window, e, int(2 * kTargetPixels * scale), centroid, count) || count < whole)
+      if (!greenCentroid(window, expected[i], int(2 * kTargetPixels * scale), centroid, count) ||
+          count < 0.5 * area * scale * scale)
       {
         return false;
       }

@@ -83,8 +83,8 @@ public:
   /// Depth (optical z) of a floor point.
   double depth(const Vec2& floor) const;
   /// Image pixel of the area centroid of a floor disc's outline as the lens shows it (a disc seen
-  /// at an angle is not centred on its centre's projection).
-  Vec2 discCentroid(const Vec2& centre, double diameter) const;
+  /// at an angle is not centred on its centre's projection); `area` gets its area in image pixels.
+  Vec2 discCentroid(const Vec2& centre, double diameter, double* area = nullptr) const;
   /// Image pixel -> window pixel (pixel-centre coordinates) through the letterbox.
   Vec2 toWindow(const Letterbox& box, const Vec2& image_pixel) const;
   /// The letterbox of this image in a window of the given size.
