@@ -142,12 +142,12 @@ TEST_F(ProjectedPathTest, MeshesAreBuiltOncePerPathNotPerFrame)
 {
   publishAndWait(straightPath("odom", 3.05), 6);
   const std::size_t builds = display_->meshBuilds();
-  spinFor(0.5);  // rviz updates and renders its view about 15 times
+  ASSERT_TRUE(waitForMainViewFrames(15));  // rviz updates its displays and renders its view 15 times
   rviz_->renderMainView();
   EXPECT_EQ(display_->meshBuilds(), builds) << "rebuilt without a new path or property change";
   display_->subProp("Arrow color")->setValue(QColor(0, 0, 255));
   EXPECT_EQ(display_->meshBuilds(), builds + 1);
-  spinFor(0.3);
+  ASSERT_TRUE(waitForMainViewFrames(10));
   EXPECT_EQ(display_->meshBuilds(), builds + 1);
 }
 
@@ -155,7 +155,7 @@ TEST_F(ProjectedPathTest, RenderedTopDownViewShowsArrowsAndCircle)
 {
   publishAndWait(straightPath("odom", 3.05), 6);
   rviz_->setTopDownView(1.0, 2.0, 100.0);  // 1 cm per pixel; the path runs up the middle
-  spinFor(0.3);
+  ASSERT_TRUE(waitForMainViewFrames(2));  // the view controller moves the camera in rviz's update
   const QImage image = rviz_->renderMainView();
   ASSERT_FALSE(image.isNull());
   const auto& arrows = display_->spacedPath().arrows;
@@ -190,9 +190,12 @@ TEST_F(ProjectedPathTest, PropertyChangesRedrawWithoutANewMessage)
   EXPECT_NEAR(display_->spacedPath().arrows[1].tip.y, 3.35 - 0.875, 1e-6);
 
   display_->subProp("Arrow color")->setValue(QColor(0, 0, 255));
-  spinFor(0.2);
-  const QImage image = rviz_->renderMainView();
   const QPoint shaft = rviz_->topDownPixel(1.0, display_->spacedPath().arrows[1].tail.y + 0.1);
+  QImage image;
+  waitFor([&] {
+    image = rviz_->renderMainView();
+    return sameColour(image.pixel(shaft), qRgb(0, 0, 255));
+  });
   EXPECT_TRUE(sameColour(image.pixel(shaft), qRgb(0, 0, 255))) << describe(image.pixel(shaft));
   // Where arrow 1 used to be with 0.5 m spacing (tip 2.85, tail 2.55) is floor now.
   const QPoint old_arrow = rviz_->topDownPixel(1.0, 2.65);

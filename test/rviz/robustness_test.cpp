@@ -514,8 +514,14 @@ TEST_F(CameraRobustness, UsableOddCameraInfos)
     std::string status;
   };
   const Case cases[] = {
-      {"P all zero falls back to K", [](sensor_msgs::CameraInfo& i) { i.P.fill(0); },
-       "1280x800, fx 1300, fy 1300, cx 639.5, cy 399.5"},
+      // K unlike the good P before it: a display that kept the old lens, or fell back wrongly, shows.
+      // (Pixels: ProjectorSceneTest.PAllZeroProjectsWithK in projector_pixels_test.cpp.)
+      {"P all zero falls back to K",
+       [](sensor_msgs::CameraInfo& i) {
+         i.K = {1200, 0, 600.5, 0, 1150, 430.5, 0, 0, 1};
+         i.P.fill(0);
+       },
+       "1280x800, fx 1200, fy 1150, cx 600.5, cy 430.5"},
       {"1x1",
        [](sensor_msgs::CameraInfo& i) {
          i.width = i.height = 1;

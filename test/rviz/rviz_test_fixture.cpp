@@ -123,6 +123,12 @@ bool RvizTest::waitFor(const std::function<bool()>& done, double timeout)
   return done();
 }
 
+bool RvizTest::waitForMainViewFrames(int frames, double timeout)
+{
+  const std::uint64_t start = rviz_->manager()->getFrameCount();
+  return waitFor([&] { return rviz_->manager()->getFrameCount() >= start + std::uint64_t(frames); }, timeout);
+}
+
 Status RvizTest::statusOf(rviz::Display* display, const QString& name)
 {
   // Display::setStatus() is queued: deliver what is pending first.

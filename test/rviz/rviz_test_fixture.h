@@ -71,6 +71,9 @@ protected:
   static void spinFor(double seconds);
   /// Spins until `done` holds or `timeout` seconds pass; returns `done()`.
   static bool waitFor(const std::function<bool()>& done, double timeout = 5.0);
+  /// Spins until rviz has run its update (displays' update(), view controller, main view render)
+  /// `frames` more times, or `timeout` seconds pass; returns whether it did.
+  bool waitForMainViewFrames(int frames, double timeout = 5.0);
   static Status statusOf(rviz::Display* display, const QString& name);
   /// Publishes a static transform parent -> child (x, y, z, yaw).
   void publishStaticTransform(const std::string& parent, const std::string& child, double x, double y, double z,
