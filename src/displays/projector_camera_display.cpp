@@ -604,6 +604,10 @@ void ProjectorCameraDisplay::renderNow()
   state.visibility = gate_->visibilitySignature();
   state.image = output_->imageRect();
   state.drawable = has_lens_ && pose_ok_;
+  if (output_->takeRepaintRequest())
+  {
+    gate_->invalidate();  // exposed again: the window's content must be drawn anew
+  }
   if (!gate_->needsFrame(state) && !publish)
   {
     ++frames_skipped_;  // the projector already shows exactly this

@@ -163,6 +163,7 @@ bool ProjectorOutput::create(bool full_screen, int fsaa, QString& error)
   viewport_->setVisibilityMask(visibility_mask_);
   image_rect_ = PixelRect();
   window_width_ = window_height_ = 0;
+  window_->setRepaintRequest([this] { repaint_requested_ = true; });
   // Esc and the close button arrive inside the window's own event handlers: act after they return.
   connect(window_.get(), &ProjectorOutputWindow::leaveFullScreenRequested, this,
           &ProjectorOutput::leaveFullScreenRequested, Qt::QueuedConnection);

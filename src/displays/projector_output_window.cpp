@@ -33,6 +33,11 @@ ProjectorOutputWindow::ProjectorOutputWindow(const QString& title, bool full_scr
 
 ProjectorOutputWindow::~ProjectorOutputWindow() = default;
 
+void ProjectorOutputWindow::setRepaintRequest(std::function<void()> request)
+{
+  render_widget_->setRepaintRequest(std::move(request));
+}
+
 Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
 {
   return render_widget_->renderWindow();

@@ -59,9 +59,9 @@ void ProjectorRenderWidget::moveEvent(QMoveEvent* event)
 
 void ProjectorRenderWidget::paintEvent(QPaintEvent* event)
 {
-  if (render_window_)
+  if (repaint_request_)
   {
-    render_window_->update();  // exposed again (e.g. un-minimised): redraw what was there
+    repaint_request_();  // exposed again (e.g. un-minimised): the display renders its next frame
   }
   event->accept();
 }

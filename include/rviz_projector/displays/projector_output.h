@@ -90,6 +90,14 @@ public:
   /// Where the image is drawn in the window, window pixels (whole window without an image size).
   PixelRect imageRect() const { return image_rect_; }
 
+  /// Whether the window system asked for the picture again since the last call (render even if
+  /// nothing changed).
+  bool takeRepaintRequest()
+  {
+    const bool requested = repaint_requested_;
+    repaint_requested_ = false;
+    return requested;
+  }
   /// Fits the viewport to an image of this size in the current window, exactly to integer pixels.
   /// Returns true when the rectangle changed. Cheap when nothing changed (no OGRE call).
   bool fitViewport(std::uint32_t image_width, std::uint32_t image_height);
@@ -134,6 +142,7 @@ private:
   int window_width_ = 0;
   int window_height_ = 0;
   std::string screen_name_;  ///< screen the window is on (empty while hidden)
-  QRect windowed_geometry_;  ///< the user's windowed geometry, kept across full-screen toggles
+  QRect windowed_geometry_;
+  bool repaint_requested_ = false;  ///< the user's windowed geometry, kept across full-screen toggles
 };
 }  // namespace rviz_projector

@@ -3,6 +3,8 @@
 // disables a display whose panel gets hidden, e.g. when its main window is minimised).
 #pragma once
 
+#include <functional>
+
 #include <QWidget>
 
 namespace Ogre
@@ -27,6 +29,8 @@ public:
   ~ProjectorOutputWindow() override;
 
   Ogre::RenderWindow* renderWindow() const;
+  /// See ProjectorRenderWidget::setRepaintRequest.
+  void setRepaintRequest(std::function<void()> request);
 
   /// Full screen on `screen` (cursor hidden); moves there first (Qt needs the native window on
   /// the target screen before it goes full screen there).

@@ -5,6 +5,8 @@
 // that is gone (removing camera-like displays is where rviz plugins historically crash).
 #pragma once
 
+#include <functional>
+
 #include <QWidget>
 
 namespace Ogre
@@ -22,6 +24,10 @@ public:
   ~ProjectorRenderWidget() override;
 
   Ogre::RenderWindow* renderWindow() const { return render_window_; }
+  /// Called when the window system asks for the picture again (exposed, un-minimised). The widget
+  /// never renders by itself: rendering into a window that is still being mapped or resized
+  /// crashed Mesa's software renderer; the display renders at its next frame instead.
+  void setRepaintRequest(std::function<void()> request) { repaint_request_ = std::move(request); }
 
 protected:
   void moveEvent(QMoveEvent* event) override;
@@ -31,5 +37,6 @@ protected:
 
 private:
   Ogre::RenderWindow* render_window_ = nullptr;
+  std::function<void()> repaint_request_;
 };
 }  // namespace rviz_projector
