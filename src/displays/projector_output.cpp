@@ -178,10 +178,7 @@ void ProjectorOutput::destroy()
   {
     return;
   }
-  if (!window_->isFullScreenOn() && window_->isVisible())
-  {
-    windowed_geometry_ = window_->geometry();
-  }
+  rememberUserGeometry();
   window_->disconnect(this);
   // Order matters: listener, viewport, render window (in the widget's destructor), widget.
   if (Ogre::RenderWindow* render_window = window_->renderWindow())
@@ -194,14 +191,20 @@ void ProjectorOutput::destroy()
   window_.reset();
 }
 
+void ProjectorOutput::rememberUserGeometry()
+{
+  // Only a geometry the user gave the window (moved or resized it), not one placed here.
+  if (window_ && !window_->isFullScreenOn() && window_->isVisible() && window_->geometry() != placed_geometry_)
+  {
+    windowed_geometry_ = window_->geometry();
+  }
+}
+
 void ProjectorOutput::hide()
 {
   if (window_)
   {
-    if (!window_->isFullScreenOn() && window_->isVisible())
-    {
-      windowed_geometry_ = window_->geometry();
-    }
+    rememberUserGeometry();
     window_->hide();
   }
   screen_name_.clear();
@@ -270,13 +273,19 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
   {
     window_->showFullScreenOn(screen);
   }
-  else if (!same_screen)
+  else
   {
-    // The user's own geometry wins while it is on this screen; otherwise a default placement.
+    rememberUserGeometry();
+    // The user's own geometry wins while it is on this screen; otherwise a default placement for
+    // the image size (again when the image size changes, as long as the user kept it).
     const QRect geometry = windowed_geometry_.isValid() && screen->geometry().intersects(windowed_geometry_) ?
                                windowed_geometry_ :
                                defaultWindowedGeometry(screen, image, shares_rviz);
-    window_->showWindowedOn(screen, geometry);
+    if (!same_screen || window_->geometry() != geometry)
+    {
+      window_->showWindowedOn(screen, geometry);
+      placed_geometry_ = geometry;
+    }
   }
   screen_name_ = screens[static_cast<std::size_t>(choice.index)].name;
   result.shown = true;

@@ -130,6 +130,7 @@ private Q_SLOTS:
 
 private:
   bool create(bool full_screen, int fsaa, QString& error);
+  void rememberUserGeometry();
 
   QString title_;
   Ogre::Camera* camera_;
@@ -143,6 +144,7 @@ private:
   int window_height_ = 0;
   std::string screen_name_;  ///< screen the window is on (empty while hidden)
   QRect windowed_geometry_;
+  QRect placed_geometry_;  ///< the windowed geometry last set here (anything else is the user's)
   bool repaint_requested_ = false;  ///< the user's windowed geometry, kept across full-screen toggles
 };
 }  // namespace rviz_projector
