@@ -24,17 +24,16 @@
 #include <rviz/properties/status_property.h>
 #include <rviz/window_manager_interface.h>
 
-#include "rviz_projector/core/lens_view.h"
 #include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projection_gate.h"
 #include "rviz_projector/displays/projector_floor_overlay.h"
 #include "rviz_projector/displays/projector_image_publisher.h"
+#include "rviz_projector/displays/projector_lens_source.h"
 #include "rviz_projector/displays/projector_output.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/projector_pose.h"
 #include "rviz_projector/displays/projector_view.h"
-#include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
 {
@@ -75,7 +74,6 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
 
 void ProjectorCameraDisplay::onInitialize()
 {
-  info_nh_.setCallbackQueue(&info_queue_);
   view_ = std::make_unique<ProjectorView>(scene_manager_);
 
   // The gate first: it must hear a display's removal before the Visibility property forgets it.
@@ -111,7 +109,7 @@ void ProjectorCameraDisplay::onInitialize()
     setStatus(rviz::StatusProperty::Error, "Visibility",
               "All 32 visibility bits are in use (too many camera displays): the projector view stays empty");
   }
-  noCameraInfoStatus();
+  showLensStatuses();
 }
 
 void ProjectorCameraDisplay::onEnable()
@@ -162,14 +160,7 @@ void ProjectorCameraDisplay::reset()
               "All 32 visibility bits are in use (too many camera displays): the projector view stays empty");
   }
   checkMainViewCost();
-  if (last_info_)
-  {
-    applyCameraInfo();
-  }
-  else
-  {
-    noCameraInfoStatus();
-  }
+  showLensStatuses();
   applyProjection();
   updateImageOutput();
   gate_->invalidate();
@@ -227,12 +218,8 @@ void ProjectorCameraDisplay::setTopic(const QString& topic, const QString& /*dat
 void ProjectorCameraDisplay::resubscribe()
 {
   unsubscribe();
-  last_info_.reset();
-  has_lens_ = false;
-  markChanged();
-  noCameraInfoStatus();
-  deleteStatus("Distortion");
-  deleteStatus("Field of view");
+  lens_source_.forget();
+  onLensChanged();
   subscribe();
 }
 
@@ -242,83 +229,50 @@ void ProjectorCameraDisplay::subscribe()
   {
     return;
   }
-  try
+  const std::string error = lens_source_.subscribe(props_.topic->getTopicStd());
+  if (error.empty())
   {
-    info_sub_ = info_nh_.subscribe(props_.topic->getTopicStd(), 1, &ProjectorCameraDisplay::cameraInfoCallback,
-                                   this);
     setStatus(rviz::StatusProperty::Ok, "Topic", "OK");
   }
-  catch (const ros::Exception& e)
+  else
   {
-    setStatus(rviz::StatusProperty::Error, "Topic", QString("Error subscribing: ") + e.what());
+    setStatus(rviz::StatusProperty::Error, "Topic", "Error subscribing: " + QString::fromStdString(error));
   }
 }
 
 void ProjectorCameraDisplay::unsubscribe()
 {
-  info_sub_.shutdown();
+  lens_source_.unsubscribe();
 }
 
-void ProjectorCameraDisplay::noCameraInfoStatus()
+void ProjectorCameraDisplay::showLensStatuses()
 {
-  setStatus(rviz::StatusProperty::Warn, "CameraInfo",
-            QString("No CameraInfo received on %1").arg(props_.topic->getTopic()));
-}
-
-void ProjectorCameraDisplay::cameraInfoCallback(const sensor_msgs::CameraInfo::ConstPtr& msg)
-{
-  last_info_ = msg;
-  applyCameraInfo();
-}
-
-void ProjectorCameraDisplay::applyCameraInfo()
-{
-  if (!last_info_)
+  const LensStatuses s = lens_source_.statuses(props_.topic->getTopic());
+  setStatus(s.camera_info_level == LensStatuses::Ok ?
+                rviz::StatusProperty::Ok :
+                (s.camera_info_level == LensStatuses::Warn ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error),
+            "CameraInfo", s.camera_info);
+  for (const auto& warning : {std::make_pair(QString("Distortion"), s.distortion),
+                              std::make_pair(QString("Field of view"), s.field_of_view)})
   {
-    return;
+    if (warning.second.isEmpty())
+    {
+      deleteStatus(warning.first);
+    }
+    else
+    {
+      setStatus(rviz::StatusProperty::Warn, warning.first, warning.second);
+    }
   }
-  info_frame_ = last_info_->header.frame_id;
+}
+
+void ProjectorCameraDisplay::onLensChanged()
+{
   markChanged();
-  PinholeModel lens;
-  const LensCheck check = PinholeModel::fromCalibration(toLensCalibration(*last_info_), lens);
-  if (!check.ok())
-  {
-    has_lens_ = false;
-    setStatus(rviz::StatusProperty::Error, "CameraInfo",
-              QString("Unusable CameraInfo: %1; the projector shows background only")
-                  .arg(QString::fromStdString(check.error)));
-    deleteStatus("Distortion");
-    deleteStatus("Field of view");
-    return;
-  }
-  const bool size_changed = !has_lens_ || lens.width() != lens_.width() || lens.height() != lens_.height();
-  lens_ = lens;
-  has_lens_ = true;
-  setStatus(rviz::StatusProperty::Ok, "CameraInfo",
-            QString("%1x%2, fx %3, fy %4, cx %5, cy %6")
-                .arg(lens_.width())
-                .arg(lens_.height())
-                .arg(lens_.fx())
-                .arg(lens_.fy())
-                .arg(lens_.cx())
-                .arg(lens_.cy()));
-  if (check.warning.empty())
-  {
-    deleteStatus("Distortion");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Distortion", QString::fromStdString(check.warning));
-  }
-  const std::string narrow = narrowViewWarning(lens_);
-  if (narrow.empty())
-  {
-    deleteStatus("Field of view");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Field of view", QString::fromStdString(narrow));
-  }
+  showLensStatuses();
+  const bool size_changed = hasLens() != (shown_size_.first > 0) ||
+                            (hasLens() && (lens().width() != shown_size_.first || lens().height() != shown_size_.second));
+  shown_size_ = hasLens() ? std::make_pair(lens().width(), lens().height()) : std::make_pair(0u, 0u);
   applyProjection();
   if (size_changed && isEnabled())
   {
@@ -329,7 +283,7 @@ void ProjectorCameraDisplay::applyCameraInfo()
 std::string ProjectorCameraDisplay::projectorFrame() const
 {
   const std::string frame = props_.frame->getStdString();
-  return frame.empty() ? info_frame_ : frame;
+  return frame.empty() ? lens_source_.frameId() : frame;
 }
 
 void ProjectorCameraDisplay::applyProjection()
@@ -339,7 +293,7 @@ void ProjectorCameraDisplay::applyProjection()
   {
     return;
   }
-  const std::string clip = view_->setProjection(has_lens_ ? &lens_ : nullptr, props_.near_clip->getFloat(),
+  const std::string clip = view_->setProjection(hasLens() ? &lens() : nullptr, props_.near_clip->getFloat(),
                                                 props_.far_clip->getFloat());
   if (clip.empty())
   {
@@ -370,7 +324,7 @@ void ProjectorCameraDisplay::onFootprintPropertyChanged()
 
 void ProjectorCameraDisplay::updateFootprintVisible()
 {
-  overlay_->setFootprintVisible(isEnabled() && props_.footprint->getBool() && has_lens_ && pose_ok_);
+  overlay_->setFootprintVisible(isEnabled() && props_.footprint->getBool() && hasLens() && pose_ok_);
 }
 
 void ProjectorCameraDisplay::updateTestPattern()
@@ -427,8 +381,8 @@ void ProjectorCameraDisplay::updateOutput()
   request.screen = ProjectorOutput::screenName(props_.screen->getString());
   request.full_screen = props_.full_screen->getBool();
   request.fsaa = props_.anti_aliasing->getBool() ? 4 : 0;
-  request.image_width = has_lens_ ? lens_.width() : 0;
-  request.image_height = has_lens_ ? lens_.height() : 0;
+  request.image_width = hasLens() ? lens().width() : 0;
+  request.image_height = hasLens() ? lens().height() : 0;
   request.rviz_screen = ProjectorOutput::screenOf(context_->getWindowManager() ? context_->getWindowManager()->getParentWindow() : nullptr);
   output_->setTitle("Projector: " + getName());
   showOutputResult(output_->present(request));
@@ -503,12 +457,12 @@ bool ProjectorCameraDisplay::updateCameraPose()
 
 void ProjectorCameraDisplay::updateFootprint()
 {
-  if (!has_lens_ || !pose_ok_)
+  if (!hasLens() || !pose_ok_)
   {
     overlay_->setFootprintVisible(false);
     return;
   }
-  const FloorOverlayResult lit = overlay_->update(lens_, pose_, own_changes_, props_.footprint->getBool(),
+  const FloorOverlayResult lit = overlay_->update(lens(), pose_, own_changes_, props_.footprint->getBool(),
                                                   props_.test_pattern->getBool());
   updateFootprintVisible();
   if (!lit.recomputed)
@@ -541,16 +495,16 @@ bool ProjectorCameraDisplay::prepareFrame()
   {
     return false;
   }
-  pose_ok_ = has_lens_ && updateCameraPose();
-  if (!has_lens_ && transform_state_ != -1)
+  pose_ok_ = hasLens() && updateCameraPose();
+  if (!hasLens() && transform_state_ != -1)
   {
     deleteStatus("Transform");
     transform_state_ = -1;
   }
   updateFootprint();
-  if (output_->fitViewport(has_lens_ ? lens_.width() : 0, has_lens_ ? lens_.height() : 0))
+  if (output_->fitViewport(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0))
   {
-    const QString note = has_lens_ ? output_->scalingNote(lens_.width(), lens_.height()) : QString();
+    const QString note = hasLens() ? output_->scalingNote(lens().width(), lens().height()) : QString();
     if (note.isEmpty())
     {
       deleteStatus("Scaling");
@@ -572,7 +526,7 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   }
   // The frustum never shows in the projector's own view.
   overlay_->setFootprintVisibilityFlags(~vis_bit_);
-  output_->setVisibilityMask(has_lens_ && pose_ok_ ? vis_bit_ : 0u);
+  output_->setVisibilityMask(hasLens() && pose_ok_ ? vis_bit_ : 0u);
 }
 
 void ProjectorCameraDisplay::onFrameTimer()
@@ -582,7 +536,10 @@ void ProjectorCameraDisplay::onFrameTimer()
     return;
   }
   // Only this display's own CameraInfo subscription: never rviz's global queue.
-  info_queue_.callAvailable();
+  if (lens_source_.poll())
+  {
+    onLensChanged();
+  }
   renderNow();
   if (isEnabled())
   {
@@ -597,13 +554,13 @@ void ProjectorCameraDisplay::renderNow()
   {
     return;
   }
-  const bool publish = image_publisher_->due() && has_lens_;
+  const bool publish = image_publisher_->due() && hasLens();
   FrameState state;
   state.pose = view_->poseKey();
   state.changes = ProjectionChangeCounter::value() + own_changes_;
   state.visibility = gate_->visibilitySignature();
   state.image = output_->imageRect();
-  state.drawable = has_lens_ && pose_ok_;
+  state.drawable = hasLens() && pose_ok_;
   if (output_->takeRepaintRequest())
   {
     gate_->invalidate();  // exposed again: the window's content must be drawn anew
@@ -617,7 +574,7 @@ void ProjectorCameraDisplay::renderNow()
   ++frames_rendered_;
   if (publish)
   {
-    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens_, projectorFrame());
+    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame());
     output_->swap();
   }
 }

@@ -1,7 +1,7 @@
 // rviz display "rviz_projector/ProjectorCamera": renders the scene through the projector's lens
 // (CameraInfo) from its pose (tf) straight into a full-screen window on the projector's screen.
 // An orchestrator: it owns the properties and statuses and wires the parts together.
-//   PinholeModel (core)        lens from CameraInfo, OpenGL projection
+//   ProjectorLensSource        CameraInfo (private queue) -> PinholeModel (core), lens statuses
 //   ProjectorView              the OGRE camera at the projector's pose, through its lens
 //   ProjectorOutput            output window, render window, viewport, screens, exact letterbox
 //   ProjectionGate             whether a frame is needed; Visibility ticks by display identity
@@ -23,7 +23,6 @@
 #include <OgreRenderTargetListener.h>
 #include <QElapsedTimer>
 #include <QTimer>
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <rviz/display.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -32,6 +31,7 @@
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/displays/projector_camera_properties.h"
+#include "rviz_projector/displays/projector_lens_source.h"
 #endif
 
 
@@ -78,8 +78,8 @@ public:
   /// The output window (nullptr while none exists).
   ProjectorOutputWindow* outputWindow() const;
   /// The lens in use; valid only when hasLens().
-  const PinholeModel& lens() const { return lens_; }
-  bool hasLens() const { return has_lens_; }
+  const PinholeModel& lens() const { return lens_source_.lens(); }
+  bool hasLens() const { return lens_source_.hasLens(); }
   /// The visibility bit used by the projector view (0 when none could be allocated).
   std::uint32_t visibilityBit() const { return vis_bit_; }
 
@@ -113,10 +113,10 @@ private Q_SLOTS:
 private:
   void subscribe();
   void unsubscribe();
-  void cameraInfoCallback(const sensor_msgs::CameraInfo::ConstPtr& msg);
-  /// Applies the last CameraInfo (lens, statuses); also re-raises its problems after a reset.
-  void applyCameraInfo();
-  void noCameraInfoStatus();
+  /// A CameraInfo arrived (or was forgotten): statuses, projection, window size.
+  void onLensChanged();
+  /// The CameraInfo, Distortion and Field of view statuses, as the lens source says.
+  void showLensStatuses();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
   void checkMainViewCost();
   void showOutputResult(const OutputResult& result);
@@ -134,18 +134,11 @@ private:
   ProjectorCameraProperties props_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
 
-  // CameraInfo comes through a queue of this display's own, drained by its frame timer: prompt,
-  // and never a reason to spin rviz's global queue (whose callbacks may delete this display).
-  ros::CallbackQueue info_queue_;
-  ros::NodeHandle info_nh_;
-  ros::Subscriber info_sub_;
-  sensor_msgs::CameraInfo::ConstPtr last_info_;
-  PinholeModel lens_;
-  bool has_lens_ = false;
+  ProjectorLensSource lens_source_;
+  std::pair<std::uint32_t, std::uint32_t> shown_size_{0, 0};  ///< image size the window was laid out for
   bool pose_ok_ = false;
   RigidTransform pose_;       ///< optical frame -> fixed frame, when pose_ok_
   int transform_state_ = -1;  ///< which Transform status is shown (avoids rebuilding its text)
-  std::string info_frame_;
 
   std::unique_ptr<ProjectionGate> gate_;
   std::unique_ptr<ProjectorOutput> output_;

@@ -1,0 +1,74 @@
+// One part of ProjectorCameraDisplay: the projector's lens from its CameraInfo topic. The
+// subscription lives on a callback queue of its own, drained by the display's frame timer: prompt,
+// and never a reason to spin rviz's global queue (whose callbacks may delete the display).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <QString>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "rviz_projector/core/lens_check.h"
+#include "rviz_projector/core/pinhole_model.h"
+
+namespace rviz_projector
+{
+/// What the display's lens statuses say. An empty warning means: no such status.
+struct LensStatuses
+{
+  enum Level
+  {
+    Ok,
+    Warn,
+    Error
+  };
+  Level camera_info_level = Warn;
+  QString camera_info;    ///< "CameraInfo"
+  QString distortion;     ///< "Distortion" (warn)
+  QString field_of_view;  ///< "Field of view" (warn)
+};
+
+class ProjectorLensSource
+{
+public:
+  ProjectorLensSource();
+  ~ProjectorLensSource();
+  ProjectorLensSource(const ProjectorLensSource&) = delete;
+  ProjectorLensSource& operator=(const ProjectorLensSource&) = delete;
+
+  /// Subscribes to `topic`; returns an error text (empty: subscribed).
+  std::string subscribe(const std::string& topic);
+  void unsubscribe();
+  /// Forgets the last CameraInfo and its lens (the topic changed).
+  void forget();
+  /// Handles the CameraInfo messages that arrived since the last call; true when one did.
+  bool poll();
+
+  bool hasInfo() const { return static_cast<bool>(last_); }
+  /// A usable lens from the last CameraInfo.
+  bool hasLens() const { return has_lens_; }
+  const PinholeModel& lens() const { return lens_; }
+  /// frame_id of the last CameraInfo (empty without one).
+  const std::string& frameId() const { return frame_id_; }
+  /// The statuses for the display; `topic` names the topic in "No CameraInfo received".
+  LensStatuses statuses(const QString& topic) const;
+
+private:
+  void callback(const sensor_msgs::CameraInfo::ConstPtr& msg);
+
+  // Declared before the subscriber: the subscription goes first, its queue after it.
+  ros::CallbackQueue queue_;
+  ros::NodeHandle nh_;
+  ros::Subscriber sub_;
+  sensor_msgs::CameraInfo::ConstPtr last_;
+  bool received_ = false;
+  std::string frame_id_;
+  PinholeModel lens_;
+  bool has_lens_ = false;
+  LensCheck check_;
+  std::string narrow_view_;
+};
+}  // namespace rviz_projector
