@@ -383,7 +383,11 @@ void ProjectorCameraDisplay::updateOutput()
   request.fsaa = props_.anti_aliasing->getBool() ? 4 : 0;
   request.image_width = hasLens() ? lens().width() : 0;
   request.image_height = hasLens() ? lens().height() : 0;
-  request.rviz_screen = ProjectorOutput::screenOf(context_->getWindowManager() ? context_->getWindowManager()->getParentWindow() : nullptr);
+  // rviz's screen; the primary one while rviz's window has none yet (start-up) or when rviz is
+  // embedded without a window manager.
+  QScreen* rviz_screen =
+      ProjectorOutput::screenOf(context_->getWindowManager() ? context_->getWindowManager()->getParentWindow() : nullptr);
+  request.rviz_screen = rviz_screen ? rviz_screen : QGuiApplication::primaryScreen();
   output_->setTitle("Projector: " + getName());
   showOutputResult(output_->present(request));
   updateFrameRate();
@@ -550,7 +554,7 @@ void ProjectorCameraDisplay::onFrameTimer()
 
 void ProjectorCameraDisplay::renderNow()
 {
-  if (!isEnabled() || !output_ || !output_->isExposed() || !prepareFrame())
+  if (!isEnabled() || !output_ || !output_->isShown() || !prepareFrame())
   {
     return;
   }

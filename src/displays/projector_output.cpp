@@ -108,14 +108,6 @@ bool ProjectorOutput::isShown() const
   return window_ && window_->isVisible();
 }
 
-bool ProjectorOutput::isExposed() const
-{
-  // Not before the X server mapped the window and exposed it at its final size: rendering into a
-  // drawable that is still being mapped and resized has crashed Mesa's software renderer.
-  const QWindow* handle = window_ ? window_->windowHandle() : nullptr;
-  return isShown() && handle && handle->isExposed();
-}
-
 void ProjectorOutput::setTitle(const QString& title)
 {
   if (title == title_)

@@ -80,8 +80,6 @@ public:
   void destroy();
 
   bool isShown() const;
-  /// Shown and exposed by the window system: something can be rendered into it.
-  bool isExposed() const;
   /// Refresh rate of the screen the window is on, Hz (0 when unknown).
   double refreshRate() const;
   ProjectorOutputWindow* window() const { return window_.get(); }
