@@ -531,7 +531,9 @@ TEST_F(ProjectorSceneTest, ImageOutputPublishesTheRenderedView)
   EXPECT_EQ(int(image->height), box.height);
   EXPECT_EQ(image->encoding, "rgb8");
   EXPECT_EQ(image->header.frame_id, kOpticalFrame);
-  EXPECT_EQ(info->width, 1280u);
+  // The CameraInfo describes the published image (scaled with it), not the projector's panel.
+  EXPECT_EQ(info->width, image->width);
+  EXPECT_EQ(info->height, image->height);
   int magenta = 0;
   for (std::size_t i = 0; i + 2 < image->data.size(); i += 3)
   {
