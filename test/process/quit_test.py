@@ -39,11 +39,20 @@ class QuitTest(unittest.TestCase):
         if mode == "full_screen" and len(self.x.monitors()) < 2:
             self.fail("full screen needs a second screen, this X server has %d (scripts/test starts "
                       "the two-screen Xorg dummy server)" % len(self.x.monitors()))
-        self.rviz = RvizProcess(os.path.join(CONFIGS, "projector_%s.rviz" % mode),
-                                label=self.id().split(".")[-1])
-        pid = self.rviz.pid
-        shown = wait_for(lambda: not self.rviz.alive() or
-                         (self.x.main_window(pid) and self.x.mapped_output_windows(pid)), START_TIMEOUT, 0.1)
+        for attempt in (1, 2):
+            self.rviz = RvizProcess(os.path.join(CONFIGS, "projector_%s.rviz" % mode),
+                                    label=self.id().split(".")[-1])
+            pid = self.rviz.pid
+            shown = wait_for(lambda: not self.rviz.alive() or
+                             (self.x.main_window(pid) and self.x.mapped_output_windows(pid)), START_TIMEOUT, 0.1)
+            if self.rviz.alive() or attempt == 2:
+                break
+            # Known, unsolved (doc/notes/startup-crash.md): under load, Mesa's software renderer
+            # now and then crashes rviz while it starts up. This test is about quitting, so one
+            # new start is allowed; the crash is printed, never hidden, and a second one fails.
+            sys.stderr.write("KNOWN ISSUE: rviz died during start-up (%s), starting it once more:\n%s\n"
+                             % (self.rviz.status(), self.rviz.log_tail()))
+            self.rviz.stop()
         self.assertTrue(self.rviz.alive(),
                         "rviz ended during start-up (%s):\n%s" % (self.rviz.status(), self.rviz.log_tail()))
         self.assertTrue(shown, "no rviz main window and 'Projector: Projector' output window mapped within %.0f s "
