@@ -39,17 +39,14 @@ namespace rviz_projector
 {
 namespace
 {
-rviz::StatusProperty::Level levelOf(const OutputResult& result)
+/// The parts' Ok/Warn/Error levels are rviz's, value for value.
+template <typename Level>
+rviz::StatusProperty::Level levelOf(Level level)
 {
-  switch (result.level)
-  {
-    case OutputResult::Ok:
-      return rviz::StatusProperty::Ok;
-    case OutputResult::Warn:
-      return rviz::StatusProperty::Warn;
-    default:
-      return rviz::StatusProperty::Error;
-  }
+  static_assert(int(Level::Ok) == rviz::StatusProperty::Ok && int(Level::Warn) == rviz::StatusProperty::Warn &&
+                    int(Level::Error) == rviz::StatusProperty::Error,
+                "status levels differ");
+  return static_cast<rviz::StatusProperty::Level>(level);
 }
 }  // namespace
 
@@ -184,16 +181,10 @@ void ProjectorCameraDisplay::load(const rviz::Config& config)
   props_.screen->setString(QString::fromStdString(wanted));
   // An output screen that is not connected is said at once, even while the display is disabled
   // (placing the window, when enabled, keeps the status up to date).
-  if (!isEnabled() && wanted != kAutomaticScreen)
+  if (!isEnabled() && wanted != kAutomaticScreen && !ProjectorOutput::screenConnected(wanted))
   {
-    const QList<QScreen*> screens = QGuiApplication::screens();
-    const bool connected = std::any_of(screens.begin(), screens.end(),
-                                       [&wanted](const QScreen* s) { return s->name().toStdString() == wanted; });
-    if (!connected)
-    {
-      setStatus(rviz::StatusProperty::Warn, "Output",
-                QString("Screen '%1' is not connected").arg(QString::fromStdString(wanted)));
-    }
+    setStatus(rviz::StatusProperty::Warn, "Output",
+              QString("Screen '%1' is not connected").arg(QString::fromStdString(wanted)));
   }
   if (replaced.isEmpty())
   {
@@ -248,10 +239,7 @@ void ProjectorCameraDisplay::unsubscribe()
 void ProjectorCameraDisplay::showLensStatuses()
 {
   const LensStatuses s = lens_source_.statuses(props_.topic->getTopic());
-  setStatus(s.camera_info_level == LensStatuses::Ok ?
-                rviz::StatusProperty::Ok :
-                (s.camera_info_level == LensStatuses::Warn ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error),
-            "CameraInfo", s.camera_info);
+  setStatus(levelOf(s.camera_info_level), "CameraInfo", s.camera_info);
   for (const auto& warning : {std::make_pair(QString("Distortion"), s.distortion),
                               std::make_pair(QString("Field of view"), s.field_of_view)})
   {
@@ -396,7 +384,7 @@ void ProjectorCameraDisplay::updateOutput()
 
 void ProjectorCameraDisplay::showOutputResult(const OutputResult& result)
 {
-  setStatus(levelOf(result), "Output", result.text);
+  setStatus(levelOf(result.level), "Output", result.text);
 }
 
 void ProjectorCameraDisplay::onScreensChanged()

@@ -88,6 +88,13 @@ std::string ProjectorOutput::screenName(const QString& value)
   return (cut < 0 ? value : value.left(cut)).trimmed().toStdString();
 }
 
+bool ProjectorOutput::screenConnected(const std::string& name)
+{
+  const QList<QScreen*> screens = QGuiApplication::screens();
+  return std::any_of(screens.begin(), screens.end(),
+                     [&name](const QScreen* s) { return s->name().toStdString() == name; });
+}
+
 QString ProjectorOutput::scalingNote(std::uint32_t image_width, std::uint32_t image_height) const
 {
   if (image_rect_.width == static_cast<int>(image_width) && image_rect_.height == static_cast<int>(image_height))

@@ -111,6 +111,8 @@ public:
   /// The screen name in an Output screen property. Configs saved before 2026-11 hold a label
   /// "NAME (WxH at X,Y)": its name part.
   static std::string screenName(const QString& value);
+  /// Whether a screen of that name is connected.
+  static bool screenConnected(const std::string& name);
   /// Status text when the image is scaled in the window (not 1:1); empty when it is not.
   QString scalingNote(std::uint32_t image_width, std::uint32_t image_height) const;
 
