@@ -12,6 +12,7 @@
 
 #include "rviz_projector/core/lens_calibration.h"
 #include "rviz_projector/core/pinhole_model.h"
+#include "rviz_projector/ros/ros_conversions.h"
 
 using rviz_projector::LensCalibration;
 using rviz_projector::PinholeModel;
@@ -36,23 +37,10 @@ sensor_msgs::CameraInfo referenceInfo()
   return info;
 }
 
-/// The same numbers without ROS types: field by field, nothing computed.
+/// The conversion the display uses (ros_conversions): the CameraInfo's fields, nothing computed.
 LensCalibration toCalibration(const sensor_msgs::CameraInfo& info)
 {
-  LensCalibration c;
-  c.width = info.width;
-  c.height = info.height;
-  c.distortion_model = info.distortion_model;
-  c.D = info.D;
-  std::copy(info.K.begin(), info.K.end(), c.K.begin());
-  std::copy(info.P.begin(), info.P.end(), c.P.begin());
-  c.binning_x = info.binning_x;
-  c.binning_y = info.binning_y;
-  c.roi_x_offset = info.roi.x_offset;
-  c.roi_y_offset = info.roi.y_offset;
-  c.roi_width = info.roi.width;
-  c.roi_height = info.roi.height;
-  return c;
+  return rviz_projector::toLensCalibration(info);
 }
 
 /// Points in front of the lens spread over (and beyond) the image, near and far.
