@@ -29,7 +29,7 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
       "header's frame_id.",
       display, SLOT(applyProjection()), display);
   screen = new rviz::EnumProperty(
-      "Output screen", "Automatic",
+      "Output screen", kAutomaticScreen,
       "Screen the projector is plugged into (its name, e.g. HDMI-1). Automatic: a screen of rviz's desktop other than "
       "rviz's own that no other projector uses.", display,
       SLOT(updateOutput()), display);

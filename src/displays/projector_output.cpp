@@ -250,7 +250,7 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
   QScreen* screen = qt_screens[choice.index];
   // Never full screen over rviz by accident: when Automatic ends up on rviz's own screen, or only
   // one screen exists, the window opens windowed. A screen the user named explicitly is obeyed.
-  const bool named = request.screen != kAutomatic && !request.screen.empty() && problem.isEmpty();
+  const bool named = request.screen != kAutomaticScreen && !request.screen.empty() && problem.isEmpty();
   const bool shares_rviz = qt_screens.size() < 2 || (choice.shares_rviz_screen && !named);
   const bool full_screen = request.full_screen && !shares_rviz;
   if (!window_ || window_->isFullScreenOn() != full_screen || window_->fsaa() != request.fsaa)

@@ -30,6 +30,7 @@
 #include "rviz_projector/core/frame_pacer.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/core/screen_choice.h"
 #include "rviz_projector/displays/projector_camera_properties.h"
 #include "rviz_projector/displays/projector_lens_source.h"
 #endif
@@ -55,7 +56,7 @@ class ProjectorCameraDisplay : public rviz::Display, public Ogre::RenderTargetLi
   Q_OBJECT
 public:
   static constexpr const char* kDefaultTopic = "/projector/camera_info";
-  static constexpr const char* kAutomaticScreen = "Automatic";
+  static constexpr const char* kAutomaticScreen = rviz_projector::kAutomaticScreen;
 
   ProjectorCameraDisplay();
   ~ProjectorCameraDisplay() override;

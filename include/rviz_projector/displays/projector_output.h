@@ -17,6 +17,7 @@
 #include <QString>
 
 #include "rviz_projector/core/letterbox.h"
+#include "rviz_projector/core/screen_choice.h"
 #endif
 
 namespace Ogre
@@ -36,7 +37,7 @@ class ProjectorOutputWindow;
 /// What the display wants shown.
 struct OutputRequest
 {
-  std::string screen = "Automatic";  ///< a screen's name, or "Automatic"
+  std::string screen = kAutomaticScreen;  ///< a screen's name, or "Automatic"
   bool full_screen = true;
   int fsaa = 0;                      ///< multisampling samples, 0 = off
   std::uint32_t image_width = 0;     ///< 0: no lens yet (a 1280x800 window until one arrives)
@@ -62,8 +63,6 @@ class ProjectorOutput : public QObject
 {
   Q_OBJECT
 public:
-  static constexpr const char* kAutomatic = "Automatic";
-
   /// `camera` draws into the viewport; `listener` hears the render window's updates (both outlive
   /// this object).
   ProjectorOutput(const QString& title, Ogre::Camera* camera, Ogre::RenderTargetListener* listener);
