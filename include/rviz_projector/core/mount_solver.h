@@ -61,14 +61,58 @@ struct MountSolution
   std::vector<int> outliers;          ///< ids rejected
   double rms_px = 0.0;                ///< over the inliers
   double rms_mm = 0.0;
-  std::array<double, 36> covariance{};  ///< of (rx, ry, rz, tx, ty, tz) of the optical pose, row-major
-  std::vector<ExpectedError> expected;  ///< at the pattern's corners and 2 m ahead of the mount
+  /// Of (rx, ry, rz, tx, ty, tz): OpenCV's rotation vector and translation of the parent frame in
+  /// the optical frame (what solvePnP returns; p_optical = R(r) p_parent + t), row-major.
+  /// The measurement error is on the floor, the fit minimises pixels, so: the sandwich
+  /// H^-1 (sum J_i^T S_i J_i) H^-1 with H = J^T J, J the reprojection Jacobian of the inliers
+  /// (cv::projectPoints), S_i = sigma^2 A_i A_i^T the pixel covariance of point i (A_i = d(u, v) /
+  /// d(x, y) on its plane), sigma^2 the a-posteriori variance of a coordinate, sum(|residual on the
+  /// plane|^2) / (2N - 6), but never less than tape_error^2 (so exact data does not claim zero error).
+  /// With fit_intrinsics the pose block of the joint (pose, fx, fy, cx, cy) covariance (2N - 10).
+  std::array<double, 36> covariance{};
+  /// 1-sigma radial floor error (sqrt of the trace of the propagated 2x2 covariance) at the input's
+  /// extreme crosshairs (top-left, top-right, bottom-left, bottom-right pixel among the inliers) and
+  /// at the floor point 2 m ahead of the mount along its yaw (parent x, y + 2 m (cos yaw, sin yaw),
+  /// z = 0) when that is in the image (otherwise a warning says so).
+  std::vector<ExpectedError> expected;
+  /// With fit_intrinsics: 1-sigma of the fitted fx, fy, cx, cy (pixels), same sigma as covariance.
+  std::array<double, 4> lens_stddev{};
 };
 
 /// Problems of the input alone ("" when fine): fewer than 4 points, NaN/Inf, duplicate ids,
-/// pixels outside the lens's image, values that look like millimetres, collinear points.
+/// pixels outside the lens's image, values that look like millimetres (|x|, |y| or |z| > 50),
+/// collinear points (smallest / largest singular value of the centred pixels, or of the centred
+/// world points' two main directions, below 0.02).
 std::string floorPointsProblem(const PinholeModel& lens, const std::vector<FloorPoint>& points);
 
+/// Problems of the lens for solving ("" when fine): no image, focal lengths not positive and
+/// finite, Tx or Ty not zero (a projector has no stereo baseline).
+std::string solverLensProblem(const PinholeModel& lens);
+
+/**
+ * The mount from the points.
+ *  - Input checks: solverLensProblem, floorPointsProblem (errors, ok == false).
+ *  - Pose: IPPE when all points lie within 1 mm of one plane z = const (any height), else SQPnP and
+ *    EPnP; every candidate refined by Levenberg-Marquardt (cv::solvePnPRefineLM); the physically
+ *    valid one (optical centre above the lowest point, every point in front of the lens) with the
+ *    smallest reprojection error wins. Pixels are used as given: PinholeModel's convention is
+ *    OpenCV's (integer = pixel centre). No distortion (the project does not honour D yet).
+ *  - Outliers: while a point lies further than outlier_distance from the fit (residual mm), the
+ *    pose is fitted without each inlier in turn; the fit with the smallest truncated cost (sum of
+ *    min(residual, outlier_distance)^2 over the inliers, as MSAC) is kept and the points further
+ *    than outlier_distance from it are rejected. Fewer than 4 points left (6 with fit_intrinsics)
+ *    is an error. Deterministic (no random sampling).
+ *  - fit_intrinsics: needs points off one plane (RMS distance from their best plane >= 5 mm, else
+ *    the error explains why) and 6+ points; cv::calibrateCamera on the single view (the given lens
+ *    as the start, distortion fixed at zero; pixels shifted by one image size so that a principal
+ *    point outside the image, normal for projectors, is accepted) in every fit above; refused when
+ *    the fitted lens is too uncertain (1-sigma focal length > 2% or principal point > 4% of the
+ *    image size, from the covariance below with its 2N - 10 degrees of freedom).
+ *  - Errors after solving: a point behind the projector, the projector below the points.
+ *  - Warnings (solution still given): fewer than 6 inliers, nearly collinear (singular value ratio
+ *    < 0.15), all pixels within a box under 40% of the image's width and height, a point off by more
+ *    than outlier_distance that no single rejection explains, 2 m ahead not in the image.
+ */
 MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>& points,
                          const MountSolverOptions& options = MountSolverOptions());
 
