@@ -158,9 +158,11 @@ CrosshairDrawing crosshairDrawing(const Crosshair& crosshair, std::uint32_t widt
   const int n = static_cast<int>(digits.size());
   const int label_w = n * s.digit_width + (n - 1) * s.digit_gap;
   const int label_h = s.digit_height;
-  // Lower-right quadrant, clear of both arms (which lie on the centre row and column only).
-  const int x0 = placeLabel(u + half + 1 + s.digit_gap, u - half - s.digit_gap, label_w, w);
-  const int y0 = placeLabel(v + half + 1 + s.digit_gap, v - half - s.digit_gap, label_h, h);
+  // Lower-right quadrant, clear of both arms (which lie on the centre row and column only) and
+  // half an arm away from the centre, so that tape over the centre does not cover the number.
+  const int label_gap = s.digit_gap + s.arm_length / 2;
+  const int x0 = placeLabel(u + half + 1 + label_gap, u - half - label_gap, label_w, w);
+  const int y0 = placeLabel(v + half + 1 + label_gap, v - half - label_gap, label_h, h);
   const int t = s.segment;
   const int dw = s.digit_width;
   const int dh = s.digit_height;
