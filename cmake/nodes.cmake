@@ -1,6 +1,8 @@
 # Projector set-up nodes and their tests (included from CMakeLists.txt before the install section).
 #   projector_info_publisher  calibration YAML -> latched sensor_msgs/CameraInfo
 #   path_to_markers           nav_msgs/Path -> the ProjectedPath arrows as a visualization_msgs/MarkerArray
+#   calibrate_projector       crosshair template, mount solver from measured floor points (issue 12)
+#   mount_tf_publisher        mount.yaml -> the static tf parent_frame -> projector frame (projector.launch)
 
 # yaml-cpp: to name the field at fault in a calibration file (camera_calibration_parsers only says
 # that parsing failed). roslib: package:// calibration URLs.
@@ -12,6 +14,7 @@ set(${PROJECT_NAME}_NODES_LIBRARIES ${YAML_CPP_LIBRARIES} ${roslib_LIBRARIES})
 # Shared by the nodes and their tests (compiled into each; not a library of the package).
 set(${PROJECT_NAME}_CALIBRATION_SOURCES src/nodes/calibration_file.cpp)
 set(${PROJECT_NAME}_PATH_MARKERS_SOURCES src/nodes/path_markers.cpp)
+set(${PROJECT_NAME}_MOUNT_FILE_SOURCES src/nodes/mount_file.cpp)
 
 add_executable(projector_info_publisher
   ${${PROJECT_NAME}_CALIBRATION_SOURCES}
@@ -21,7 +24,22 @@ add_executable(path_to_markers
   ${${PROJECT_NAME}_PATH_MARKERS_SOURCES}
   src/nodes/path_to_markers.cpp
 )
-foreach(node path_to_markers projector_info_publisher)
+add_executable(calibrate_projector
+  ${${PROJECT_NAME}_CALIBRATION_SOURCES}
+  ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
+  src/nodes/calibrate_projector.cpp
+  src/nodes/calibrate_projector_options.cpp
+  src/nodes/calibration_points_file.cpp
+  src/nodes/calibration_report.cpp
+  src/nodes/calibration_run.cpp
+  src/nodes/clicked_points.cpp
+)
+add_executable(mount_tf_publisher
+  ${${PROJECT_NAME}_CALIBRATION_SOURCES}
+  ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
+  src/nodes/mount_tf_publisher.cpp
+)
+foreach(node calibrate_projector mount_tf_publisher path_to_markers projector_info_publisher)
   set_target_properties(${node} PROPERTIES AUTOMOC OFF)
   target_include_directories(${node} SYSTEM PRIVATE ${${PROJECT_NAME}_NODES_INCLUDE_DIRS})
   target_link_libraries(${node} ${PROJECT_NAME}_ros ${PROJECT_NAME}_core ${catkin_LIBRARIES}
@@ -30,7 +48,7 @@ foreach(node path_to_markers projector_info_publisher)
   add_dependencies(${node} ${catkin_EXPORTED_TARGETS})
 endforeach()
 
-install(TARGETS path_to_markers projector_info_publisher
+install(TARGETS calibrate_projector mount_tf_publisher path_to_markers projector_info_publisher
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
 )
 
