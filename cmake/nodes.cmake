@@ -25,14 +25,14 @@ add_executable(path_to_markers
   src/nodes/path_to_markers.cpp
 )
 add_executable(calibrate_projector
-  ${${PROJECT_NAME}_CALIBRATION_SOURCES}
-  ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
   src/nodes/calibrate_projector.cpp
   src/nodes/calibrate_projector_options.cpp
+  ${${PROJECT_NAME}_CALIBRATION_SOURCES}
   src/nodes/calibration_points_file.cpp
   src/nodes/calibration_report.cpp
   src/nodes/calibration_run.cpp
   src/nodes/clicked_points.cpp
+  ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
 )
 add_executable(mount_tf_publisher
   ${${PROJECT_NAME}_CALIBRATION_SOURCES}
