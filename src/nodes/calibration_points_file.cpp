@@ -79,6 +79,11 @@ public:
       return where() + " must be a map like {id: 1, u: 192.0, v: 120.0, x: 2.013, y: 0.871} (got " +
              describe(entry_) + ")";
     }
+    std::string error = readId();
+    if (!error.empty())
+    {
+      return error;
+    }
     for (const auto& key_value : entry_)
     {
       const std::string key = key_value.first.IsScalar() ? key_value.first.Scalar() : "?";
@@ -86,11 +91,6 @@ public:
       {
         return where() + ": unknown field '" + key + "' (expected id, u, v, x, y and optionally z)";
       }
-    }
-    std::string error = readId();
-    if (!error.empty())
-    {
-      return error;
     }
     point.id = id_;
     const YAML::Node u = entry_["u"];

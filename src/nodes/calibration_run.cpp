@@ -1,5 +1,6 @@
 #include "rviz_projector/nodes/calibration_run.h"
 
+#include <cmath>
 #include <sstream>
 
 #include <camera_calibration_parsers/parse_yml.h>
@@ -115,6 +116,12 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   if (!solution.ok)
   {
     return reportError(err, points_name + ": no solution: " + solution.error);
+  }
+  const ProjectorMount& m = solution.mount;
+  if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.roll) ||
+      !std::isfinite(m.pitch) || !std::isfinite(m.yaw))
+  {
+    return reportError(err, points_name + ": no solution: the solver returned a mount that is not finite");
   }
 
   // Everything to write is composed first: a failure leaves no half-written set of files.

@@ -407,3 +407,9 @@ TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
   EXPECT_EQ(0, help.status);
   EXPECT_NE(std::string::npos, help.out.find("--pattern"));
 }
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
