@@ -1,5 +1,7 @@
 #include "rviz_projector/nodes/calibration_points_file.h"
 
+#include "rviz_projector/nodes/number_format.h"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -281,14 +283,6 @@ std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pa
   return "";
 }
 
-std::string fixed(double value, int decimals)
-{
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(decimals);
-  text << (value == 0.0 ? 0.0 : value);  // no "-0.0"
-  return text.str();
-}
 }  // namespace
 
 std::string readCalibrationPoints(const std::string& path, const std::vector<Crosshair>& pattern,
@@ -332,8 +326,8 @@ std::string calibrationPointsTemplate(const std::vector<Crosshair>& pattern, con
        << "points:\n";
   for (const Crosshair& crosshair : pattern)
   {
-    text << "  - {id: " << crosshair.id << ", u: " << fixed(crosshair.pixel.x, 1)
-         << ", v: " << fixed(crosshair.pixel.y, 1) << ", x: null, y: null}\n";
+    text << "  - {id: " << crosshair.id << ", u: " << fixedDecimals(crosshair.pixel.x, 1)
+         << ", v: " << fixedDecimals(crosshair.pixel.y, 1) << ", x: null, y: null}\n";
   }
   return text.str();
 }
@@ -345,9 +339,9 @@ std::string calibrationPointsYaml(const CalibrationPoints& points, const std::st
        << "points:\n";
   for (const FloorPoint& point : points.points)
   {
-    text << "  - {id: " << point.id << ", u: " << fixed(point.pixel.x, 3) << ", v: " << fixed(point.pixel.y, 3)
-         << ", x: " << fixed(point.world.x, 6) << ", y: " << fixed(point.world.y, 6)
-         << ", z: " << fixed(point.world.z, 6) << "}\n";
+    text << "  - {id: " << point.id << ", u: " << fixedDecimals(point.pixel.x, 3) << ", v: " << fixedDecimals(point.pixel.y, 3)
+         << ", x: " << fixedDecimals(point.world.x, 6) << ", y: " << fixedDecimals(point.world.y, 6)
+         << ", z: " << fixedDecimals(point.world.z, 6) << "}\n";
   }
   return text.str();
 }

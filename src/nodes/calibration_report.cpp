@@ -1,5 +1,7 @@
 #include "rviz_projector/nodes/calibration_report.h"
 
+#include "rviz_projector/nodes/number_format.h"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -8,15 +10,6 @@ namespace rviz_projector
 {
 namespace
 {
-std::string fixed(double value, int decimals)
-{
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(decimals);
-  text << (value == 0.0 ? 0.0 : value);  // no "-0.0"
-  return text.str();
-}
-
 double degrees(double radians)
 {
   return radians * 180.0 / M_PI;
@@ -25,9 +18,9 @@ double degrees(double radians)
 
 std::string launchArguments(const std::string& parent_frame, const ProjectorMount& mount)
 {
-  return "parent_frame:=" + parent_frame + " x:=" + fixed(mount.x, 6) + " y:=" + fixed(mount.y, 6) +
-         " z:=" + fixed(mount.z, 6) + " roll:=" + fixed(mount.roll, 6) + " pitch:=" + fixed(mount.pitch, 6) +
-         " yaw:=" + fixed(mount.yaw, 6);
+  return "parent_frame:=" + parent_frame + " x:=" + fixedDecimals(mount.x, 6) + " y:=" + fixedDecimals(mount.y, 6) +
+         " z:=" + fixedDecimals(mount.z, 6) + " roll:=" + fixedDecimals(mount.roll, 6) + " pitch:=" + fixedDecimals(mount.pitch, 6) +
+         " yaw:=" + fixedDecimals(mount.yaw, 6);
 }
 
 std::string solutionReport(const std::string& parent_frame, const MountSolution& solution,
@@ -37,9 +30,9 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
   std::ostringstream text;
   text << "Projector mount in " << parent_frame << " (" << solution.residuals.size() << " points, "
        << solution.outliers.size() << " rejected as outliers):\n"
-       << "  x " << fixed(m.x, 4) << " m, y " << fixed(m.y, 4) << " m, z " << fixed(m.z, 4) << " m, roll "
-       << fixed(degrees(m.roll), 3) << " deg, pitch " << fixed(degrees(m.pitch), 3) << " deg, yaw "
-       << fixed(degrees(m.yaw), 3) << " deg\n"
+       << "  x " << fixedDecimals(m.x, 4) << " m, y " << fixedDecimals(m.y, 4) << " m, z " << fixedDecimals(m.z, 4) << " m, roll "
+       << fixedDecimals(degrees(m.roll), 3) << " deg, pitch " << fixedDecimals(degrees(m.pitch), 3) << " deg, yaw "
+       << fixedDecimals(degrees(m.yaw), 3) << " deg\n"
        << "projector.launch arguments:\n"
        << "  " << launchArguments(parent_frame, m) << "\n";
   if (!mount_file.empty())
@@ -50,10 +43,10 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
        << "     id        px        mm  outlier\n";
   for (const PointResidual& r : solution.residuals)
   {
-    text << std::setw(7) << r.id << std::setw(10) << fixed(r.px, 3) << std::setw(10) << fixed(r.mm, 2) << "  "
+    text << std::setw(7) << r.id << std::setw(10) << fixedDecimals(r.px, 3) << std::setw(10) << fixedDecimals(r.mm, 2) << "  "
          << (r.outlier ? "yes" : "no") << "\n";
   }
-  text << "RMS over the inliers: " << fixed(solution.rms_px, 3) << " px, " << fixed(solution.rms_mm, 2) << " mm\n";
+  text << "RMS over the inliers: " << fixedDecimals(solution.rms_px, 3) << " px, " << fixedDecimals(solution.rms_mm, 2) << " mm\n";
   if (solution.outliers.empty())
   {
     text << "Outliers: none\n";
@@ -67,7 +60,7 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
       {
         if (r.id == id)
         {
-          text << " " << id << " (" << fixed(r.px, 1) << " px, " << fixed(r.mm, 1) << " mm)";
+          text << " " << id << " (" << fixedDecimals(r.px, 1) << " px, " << fixedDecimals(r.mm, 1) << " mm)";
         }
       }
     }
@@ -78,8 +71,8 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
     text << "Expected floor error of this solution (1 sigma, from its covariance):\n";
     for (const ExpectedError& e : solution.expected)
     {
-      text << "  " << e.where << " (x " << fixed(e.world.x, 2) << ", y " << fixed(e.world.y, 2)
-           << "): " << fixed(e.mm, 1) << " mm\n";
+      text << "  " << e.where << " (x " << fixedDecimals(e.world.x, 2) << ", y " << fixedDecimals(e.world.y, 2)
+           << "): " << fixedDecimals(e.mm, 1) << " mm\n";
     }
   }
   for (const std::string& warning : solution.warnings)

@@ -1,5 +1,7 @@
 #include "rviz_projector/nodes/clicked_points.h"
 
+#include "rviz_projector/nodes/number_format.h"
+
 #include <cmath>
 #include <deque>
 #include <sstream>
@@ -17,15 +19,6 @@ namespace rviz_projector
 namespace
 {
 const char* const kTopic = "/clicked_point";
-
-std::string fixed(double value, int decimals)
-{
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(decimals);
-  text << value;
-  return text.str();
-}
 
 /// Waits for the next clicked point that tf can bring into `frame`; false when ROS shuts down.
 bool nextPoint(std::deque<geometry_msgs::PointStamped>& queue, const tf2_ros::Buffer& tf, const std::string& frame,
@@ -100,8 +93,8 @@ int runClickedPoints(const CalibrateOptions& options, std::ostream& out, std::os
   const std::size_t count = input.pattern.size();
   for (const Crosshair& crosshair : input.pattern)
   {
-    out << "Crosshair " << crosshair.id << " of " << count << " at pixel (u " << fixed(crosshair.pixel.x, 1)
-        << ", v " << fixed(crosshair.pixel.y, 1) << "): click its centre" << std::endl;
+    out << "Crosshair " << crosshair.id << " of " << count << " at pixel (u " << fixedDecimals(crosshair.pixel.x, 1)
+        << ", v " << fixedDecimals(crosshair.pixel.y, 1) << "): click its centre" << std::endl;
     FloorPoint point;
     point.id = crosshair.id;
     point.pixel = crosshair.pixel;
@@ -110,8 +103,8 @@ int runClickedPoints(const CalibrateOptions& options, std::ostream& out, std::os
       return reportError(err, "interrupted after " + std::to_string(points.points.size()) + " of " +
                                   std::to_string(count) + " crosshairs: nothing written");
     }
-    out << "  crosshair " << crosshair.id << ": x " << fixed(point.world.x, 3) << ", y "
-        << fixed(point.world.y, 3) << ", z " << fixed(point.world.z, 3) << " m in " << options.frame << std::endl;
+    out << "  crosshair " << crosshair.id << ": x " << fixedDecimals(point.world.x, 3) << ", y "
+        << fixedDecimals(point.world.y, 3) << ", z " << fixedDecimals(point.world.z, 3) << " m in " << options.frame << std::endl;
     points.points.push_back(point);
   }
 

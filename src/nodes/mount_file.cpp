@@ -1,5 +1,7 @@
 #include "rviz_projector/nodes/mount_file.h"
 
+#include "rviz_projector/nodes/number_format.h"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -10,15 +12,6 @@ namespace rviz_projector
 {
 namespace
 {
-std::string fixed(double value, int decimals)
-{
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(decimals);
-  text << (value == 0.0 ? 0.0 : value);  // no "-0.0"
-  return text.str();
-}
-
 std::string describe(const YAML::Node& node)
 {
   switch (node.Type())
@@ -115,14 +108,14 @@ std::string mountFileYaml(const std::string& parent_frame, const MountSolution& 
   const ProjectorMount& m = solution.mount;
   std::ostringstream text;
   text << header_comment << "parent_frame: " << parent_frame << "\n"
-       << "x: " << fixed(m.x, 6) << "\n"
-       << "y: " << fixed(m.y, 6) << "\n"
-       << "z: " << fixed(m.z, 6) << "\n"
-       << "roll: " << fixed(m.roll, 8) << "\n"
-       << "pitch: " << fixed(m.pitch, 8) << "\n"
-       << "yaw: " << fixed(m.yaw, 8) << "\n"
-       << "rms_px: " << fixed(solution.rms_px, 3) << "\n"
-       << "rms_mm: " << fixed(solution.rms_mm, 2) << "\n"
+       << "x: " << fixedDecimals(m.x, 6) << "\n"
+       << "y: " << fixedDecimals(m.y, 6) << "\n"
+       << "z: " << fixedDecimals(m.z, 6) << "\n"
+       << "roll: " << fixedDecimals(m.roll, 8) << "\n"
+       << "pitch: " << fixedDecimals(m.pitch, 8) << "\n"
+       << "yaw: " << fixedDecimals(m.yaw, 8) << "\n"
+       << "rms_px: " << fixedDecimals(solution.rms_px, 3) << "\n"
+       << "rms_mm: " << fixedDecimals(solution.rms_mm, 2) << "\n"
        << "outliers: [";
   for (std::size_t i = 0; i < solution.outliers.size(); ++i)
   {
@@ -132,7 +125,7 @@ std::string mountFileYaml(const std::string& parent_frame, const MountSolution& 
   for (std::size_t i = 0; i < solution.residuals.size(); ++i)
   {
     const PointResidual& r = solution.residuals[i];
-    text << (i == 0 ? "" : ", ") << "{id: " << r.id << ", px: " << fixed(r.px, 3) << ", mm: " << fixed(r.mm, 2)
+    text << (i == 0 ? "" : ", ") << "{id: " << r.id << ", px: " << fixedDecimals(r.px, 3) << ", mm: " << fixedDecimals(r.mm, 2)
          << "}";
   }
   text << "]\n";
