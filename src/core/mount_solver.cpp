@@ -21,11 +21,11 @@ namespace
 {
 /// Largest accepted 1-sigma of a fitted focal length (relative) and principal point (fraction of
 /// the image's width / height) in the intrinsics mode.
-constexpr double kMaxFocalStddev = 0.01;
-constexpr double kMaxCentreStddev = 0.01;
-/// Smallest / largest singular value of the centred world points below which they are one plane
-/// for the intrinsics mode.
-constexpr double kPlanarRatio = 0.05;
+constexpr double kMaxFocalStddev = 0.02;
+constexpr double kMaxCentreStddev = 0.04;
+/// RMS distance from their best-fitting plane (metres) below which the points are one plane for
+/// the intrinsics mode.
+constexpr double kPlanarRms = 0.005;
 const cv::TermCriteria kRefine(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, DBL_EPSILON);
 
 struct Fit
@@ -131,33 +131,43 @@ Fit fitFixedLens(const PinholeModel& lens, const std::vector<FloorPoint>& points
 }
 
 /// Lens and pose together: cv::calibrateCamera on the one view, distortion fixed at zero, started
-/// from `lens`; then the pose refined in double precision.
+/// from `lens`; then the pose refined in double precision. calibrateCamera insists on a principal
+/// point inside the image, and a projector's lies below it (PA503W: cy = 817 of 800 rows): the
+/// pixels are handed over shifted by one image size into an image three times as large (a pure
+/// translation of the pixel frame, undone on the result), so the principal point may lie anywhere
+/// within one image size around the image.
 Fit fitWithLens(const PinholeModel& lens, const std::vector<FloorPoint>& points, const std::vector<int>& which)
 {
+  const double ox = lens.width(), oy = lens.height();
   std::vector<std::vector<cv::Point3f>> object(1);
   std::vector<std::vector<cv::Point2f>> image(1);
   for (int i : which)
   {
     const FloorPoint& p = points[static_cast<std::size_t>(i)];
     object[0].emplace_back(static_cast<float>(p.world.x), static_cast<float>(p.world.y), static_cast<float>(p.world.z));
-    image[0].emplace_back(static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y));
+    image[0].emplace_back(static_cast<float>(p.pixel.x + ox), static_cast<float>(p.pixel.y + oy));
   }
-  cv::Mat k(cameraMatrix(lens));
+  if (!(std::fabs(lens.cx() - lens.width() / 2.0) < 1.5 * lens.width() &&
+        std::fabs(lens.cy() - lens.height() / 2.0) < 1.5 * lens.height()))
+  {
+    return {};
+  }
+  cv::Mat k = (cv::Mat_<double>(3, 3) << lens.fx(), 0.0, lens.cx() + ox, 0.0, lens.fy(), lens.cy() + oy, 0.0, 0.0, 1.0);
   cv::Mat distortion = cv::Mat::zeros(5, 1, CV_64F);
   std::vector<cv::Mat> rvecs, tvecs;
   const int flags = cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_K1 | cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3 |
                     cv::CALIB_FIX_K4 | cv::CALIB_FIX_K5 | cv::CALIB_FIX_K6 | cv::CALIB_ZERO_TANGENT_DIST;
   try
   {
-    cv::calibrateCamera(object, image, cv::Size(static_cast<int>(lens.width()), static_cast<int>(lens.height())), k,
-                        distortion, rvecs, tvecs, flags, kRefine);
+    cv::calibrateCamera(object, image, cv::Size(3 * static_cast<int>(lens.width()), 3 * static_cast<int>(lens.height())),
+                        k, distortion, rvecs, tvecs, flags, kRefine);
   }
   catch (const cv::Exception&)
   {
     return {};
   }
-  const PinholeModel fitted(lens.width(), lens.height(), k.at<double>(0, 0), k.at<double>(1, 1), k.at<double>(0, 2),
-                            k.at<double>(1, 2));
+  const PinholeModel fitted(lens.width(), lens.height(), k.at<double>(0, 0), k.at<double>(1, 1),
+                            k.at<double>(0, 2) - ox, k.at<double>(1, 2) - oy);
   if (!solverLensProblem(fitted).empty() || rvecs.size() != 1)
   {
     return {};
@@ -212,6 +222,9 @@ MountSolution failure(const std::string& error)
   return s;
 }
 
+const char* const kNoLensFit =
+    "fitting intrinsics: cv::calibrateCamera found no lens and pose with the projector above the points and all "
+    "of them in front of it: check the points, and start from a lens near the real one";
 const char* const kNoValidPose =
     "no pose puts the projector above the points with all of them in front of it: check that each pixel "
     "belongs to its id and that x, y, z are in the parent frame";
@@ -260,12 +273,14 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   const std::size_t min_points = with_lens ? 6 : 4;
   if (with_lens)
   {
+    // RMS distance of the points from their best-fitting plane (any tilt): the smallest singular
+    // value of the centred points / sqrt(N).
     cv::Mat w;
     cv::Mat rows = cv::Mat(objectPoints(points, inliers)).reshape(1);
     cv::Mat mean;
     cv::reduce(rows, mean, 0, cv::REDUCE_AVG);
     cv::SVD::compute(rows - cv::repeat(mean, rows.rows, 1), w, cv::SVD::NO_UV);
-    if (coplanarZ(points, inliers) || w.at<double>(2) < kPlanarRatio * w.at<double>(0))
+    if (w.at<double>(2) / std::sqrt(static_cast<double>(rows.rows)) < kPlanarRms)
     {
       return failure("fitting intrinsics: floor points alone cannot tell focal length and cy apart from distance and "
                      "pitch: add 3+ points off the floor plane (z given), e.g. on a box");
@@ -276,56 +291,97 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     }
   }
 
-  // Fit, then reject the worst point (by its leave-one-out residual) while any is too far off.
+  // Fit; while a point lies further than outlier_distance from the fit: fit without each inlier
+  // in turn and keep the fit with the smallest truncated cost (sum over the inliers of
+  // min(residual, outlier_distance)^2, as MSAC scores), then reject the points further than
+  // outlier_distance from it. A fit without the bad point matches all the others closely, while a
+  // fit that still holds it is pulled away from several (the largest leave-one-out residual is no
+  // guide: a pulled fit extrapolates badly to the corner crosshairs, and a bad corner crosshair
+  // pulls the fit towards itself).
+  const char* const no_pose = with_lens ? kNoLensFit : kNoValidPose;
   Fit current = fit(lens, points, inliers, with_lens);
   if (!current.ok)
   {
-    return failure(kNoValidPose);
+    return failure(no_pose);
   }
   const double limit_mm = 1000.0 * options.outlier_distance;
   std::vector<int> outliers;
+  std::vector<std::string> robust_warnings;
   while (true)
   {
     double worst = 0.0;
+    int worst_id = 0;
     for (int i : inliers)
     {
-      worst = std::max(worst, residualMm(current, points[static_cast<std::size_t>(i)]));
+      const double r = residualMm(current, points[static_cast<std::size_t>(i)]);
+      if (r > worst)
+      {
+        worst = r, worst_id = points[static_cast<std::size_t>(i)].id;
+      }
     }
     if (worst <= limit_mm)
     {
       break;
     }
-    if (inliers.size() <= min_points)
-    {
-      return failure("the points do not agree with one mount (a residual of " + num(worst) + " mm > outlier_distance " +
-                     num(limit_mm) + " mm) and too few would remain after rejecting outliers (at least " +
-                     std::to_string(min_points) + " needed): re-measure");
-    }
-    int reject = -1;
-    double reject_mm = limit_mm;
+    std::vector<int> best_agree;
+    double best_cost = HUGE_VAL;
     for (int candidate : inliers)
     {
       std::vector<int> others;
       std::copy_if(inliers.begin(), inliers.end(), std::back_inserter(others), [&](int i) { return i != candidate; });
-      const Fit without = fit(lens, points, others, with_lens);
-      const double r = without.ok ? residualMm(without, points[static_cast<std::size_t>(candidate)]) : 0.0;
-      if (r > reject_mm)
+      if (others.size() < min_points)
       {
-        reject = candidate, reject_mm = r;
+        break;
+      }
+      const Fit without = fit(lens, points, others, with_lens);
+      if (!without.ok)
+      {
+        continue;
+      }
+      std::vector<int> agree;
+      double cost = 0.0;
+      for (int i : inliers)
+      {
+        const double r = residualMm(without, points[static_cast<std::size_t>(i)]);
+        cost += std::min(r, limit_mm) * std::min(r, limit_mm);
+        if (r <= limit_mm)
+        {
+          agree.push_back(i);
+        }
+      }
+      if (cost < best_cost)
+      {
+        best_agree = agree, best_cost = cost;
       }
     }
-    if (reject < 0)
+    if (best_agree.size() < min_points)
     {
-      break;  // no single point explains the misfit; the residuals tell the user
+      return failure("the points do not agree with one mount (a residual of " + num(worst) + " mm > outlier_distance " +
+                     num(limit_mm) + " mm) and no " + std::to_string(min_points) +
+                     " or more of them agree once outliers are rejected: re-measure them");
     }
-    inliers.erase(std::find(inliers.begin(), inliers.end(), reject));
-    outliers.push_back(reject);
+    if (best_agree.size() >= inliers.size())
+    {
+      robust_warnings.push_back("point " + std::to_string(worst_id) + " is " + num(worst) +
+                                " mm from the solution, more than outlier_distance, but leaving out no single point "
+                                "explains it better: re-measure it");
+      break;
+    }
+    for (int i : inliers)
+    {
+      if (std::find(best_agree.begin(), best_agree.end(), i) == best_agree.end())
+      {
+        outliers.push_back(i);
+      }
+    }
+    inliers = best_agree;
     current = fit(lens, points, inliers, with_lens);
     if (!current.ok)
     {
-      return failure(kNoValidPose);
+      return failure(no_pose);
     }
   }
+  std::sort(outliers.begin(), outliers.end());
 
   MountSolution s;
   s.lens = current.lens;
@@ -388,6 +444,7 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     }
   }
   s.warnings = geometryWarnings(s.lens, points, inliers);
+  s.warnings.insert(s.warnings.end(), robust_warnings.begin(), robust_warnings.end());
   expectedErrors(s.lens, current.pose, points, inliers, s);
   s.ok = true;
   return s;

@@ -204,3 +204,43 @@ TEST(MountSolverAccuracy, TapeNoiseGivesMillimetreFloorErrorAndAnHonestPredictio
     }
   }
 }
+
+TEST(MountSolverAccuracy, APointMovedBy10cmIsFlaggedAndTheRestStaysAccurate)
+{
+  const std::vector<Case> cases = {noiseCases()[0], noiseCases()[3], noiseCases()[5]};
+  for (std::size_t k = 0; k < cases.size(); ++k)
+  {
+    const Case& c = cases[k];
+    std::vector<FloorPoint> exact;
+    ASSERT_TRUE(mount_oracle::floorPoints(c.lens, c.mount, patternPixels(c.lens), exact)) << c.name;
+    std::mt19937 rng(2000 + static_cast<unsigned>(k));
+    std::normal_distribution<double> noise(0.0, 0.003);
+    std::uniform_real_distribution<double> direction(-M_PI, M_PI);
+    std::vector<double> grid;
+    for (int trial = 0; trial < 45; ++trial)
+    {
+      std::vector<FloorPoint> pts = exact;
+      for (FloorPoint& p : pts)
+      {
+        p.world.x += noise(rng);
+        p.world.y += noise(rng);
+      }
+      const std::size_t moved = static_cast<std::size_t>(trial % 9);  // every crosshair in turn
+      const double a = direction(rng);
+      pts[moved].world.x += 0.1 * std::cos(a);
+      pts[moved].world.y += 0.1 * std::sin(a);
+      const MountSolution s = solveMount(c.lens.model(), pts);
+      ASSERT_TRUE(s.ok) << c.name << ": " << s.error;
+      ASSERT_EQ(s.outliers, std::vector<int>{pts[moved].id}) << c.name << ", moved crosshair " << pts[moved].id;
+      EXPECT_TRUE(s.residuals[moved].outlier);
+      EXPECT_GT(s.residuals[moved].mm, 60.0);
+      EXPECT_LT(s.rms_mm, 10.0);
+      gridErrors(c.lens, c.mount, mount_oracle::fromSolution(s.mount), grid);
+    }
+    const double median = percentile(grid, 0.5), p95 = percentile(grid, 0.95);
+    std::printf("one point moved 10 cm, %s: floor error median %.2f mm, p95 %.2f mm\n", c.name.c_str(),
+                1000 * median, 1000 * p95);
+    EXPECT_LE(median, 0.005) << c.name;
+    EXPECT_LE(p95, 0.010) << c.name;
+  }
+}
