@@ -15,6 +15,19 @@ bool parseCount(const std::string& text, int& value)
   value = std::atoi(text.c_str());
   return value >= 1 && value <= CrosshairPatternSize::kMaxRowsCols;
 }
+
+/// Millimetres, 0.1 .. 100, into metres.
+bool parseTapeError(const std::string& text, double& metres)
+{
+  char* end = nullptr;
+  const double mm = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(mm >= 0.1 && mm <= 100.0))
+  {
+    return false;
+  }
+  metres = mm / 1000.0;
+  return true;
+}
 }  // namespace
 
 std::string calibrateUsage()
@@ -23,7 +36,8 @@ std::string calibrateUsage()
          "  calibrate_projector --pattern --camera-info CAL.yaml [--rows R --cols C] [--frame F] > points.yaml\n"
          "      print the points template: every crosshair's id and pixel u, v, with x, y to fill in\n"
          "  calibrate_projector --camera-info CAL.yaml --points points.yaml [--output mount.yaml]\n"
-         "                      [--rows R --cols C] [--fit-intrinsics [--output-calibration NEW_CAL.yaml]]\n"
+         "                      [--rows R --cols C] [--tape-error MM]\n"
+         "                      [--fit-intrinsics [--output-calibration NEW_CAL.yaml]]\n"
          "      solve the projector's mount from the measured points and print it as projector.launch\n"
          "      arguments, with the residuals, outliers and the expected floor error\n"
          "  calibrate_projector --clicked-points --camera-info CAL.yaml --points-out points.yaml\n"
@@ -37,6 +51,10 @@ std::string calibrateUsage()
          std::to_string(CrosshairPatternSize::kDefaultRows) + "x" + std::to_string(CrosshairPatternSize::kDefaultCols) +
          "); must match the display's\n"
          "  --frame F                frame of the points (default base_link)\n"
+         "  --tape-error MM          how accurately the points were measured, 1 sigma in mm (default " +
+         std::to_string(static_cast<int>(MountSolverOptions().tape_error * 1000.0 + 0.5)) +
+         "):\n"
+         "                           sets the outlier threshold and the expected error\n"
          "  --fit-intrinsics         also fit fx, fy, cx, cy (needs points off the floor, z given)\n"
          "Exit status: 0 solved/written, 1 bad input or no solution (nothing written), 2 bad command line.\n";
 }
@@ -71,6 +89,7 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     }
     std::string* text = nullptr;
     int* count = nullptr;
+    double* tape_error = nullptr;
     if (arg == "--camera-info")
       text = &out.camera_info;
     else if (arg == "--points")
@@ -85,6 +104,8 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
       text = &out.frame;
     else if (arg == "--rows")
       count = &out.rows;
+    else if (arg == "--tape-error")
+      tape_error = &out.tape_error;
     else if (arg == "--cols")
       count = &out.cols;
     else
@@ -97,6 +118,13 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     if (text != nullptr)
     {
       *text = value;
+    }
+    else if (tape_error != nullptr)
+    {
+      if (!parseTapeError(value, *tape_error))
+      {
+        return arg + " must be millimetres from 0.1 to 100 (got '" + value + "')";
+      }
     }
     else if (!parseCount(value, *count))
     {
@@ -118,7 +146,8 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   {
     return "--frame needs a frame name";
   }
-  if (pattern && (!out.points.empty() || !out.output.empty() || out.fit_intrinsics || !out.points_out.empty()))
+  if (pattern && (!out.points.empty() || !out.output.empty() || out.fit_intrinsics || !out.points_out.empty() ||
+                  out.tape_error != MountSolverOptions().tape_error))
   {
     return "--pattern only prints the template: it takes --camera-info, --rows, --cols and --frame";
   }

@@ -1,5 +1,6 @@
 #include "rviz_projector/nodes/calibration_run.h"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -8,6 +9,7 @@
 #include "rviz_projector/core/mount_solver.h"
 #include "rviz_projector/nodes/calibration_report.h"
 #include "rviz_projector/nodes/mount_file.h"
+#include "rviz_projector/nodes/number_format.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -112,6 +114,7 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   }
   MountSolverOptions solver_options;
   solver_options.fit_intrinsics = options.fit_intrinsics;
+  solver_options.tape_error = options.tape_error;
   const MountSolution solution = solveMount(input.lens, points.points, solver_options);
   if (!solution.ok)
   {
@@ -157,9 +160,14 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   out << solutionReport(points.frame, solution, options.output);
   if (options.fit_intrinsics)
   {
-    out << "Fitted intrinsics (image of the model): fx " << solution.lens.fx() << ", fy " << solution.lens.fy()
-        << ", cx " << solution.lens.cx() << ", cy " << solution.lens.cy() << " px (were fx " << input.lens.fx()
-        << ", fy " << input.lens.fy() << ", cx " << input.lens.cx() << ", cy " << input.lens.cy() << ")\n";
+    const PinholeModel& fitted = solution.lens;
+    const std::array<double, 4>& sigma = solution.lens_stddev;
+    out << "Fitted intrinsics (1 sigma): fx " << fixedDecimals(fitted.fx(), 1) << " +- " << fixedDecimals(sigma[0], 1)
+        << ", fy " << fixedDecimals(fitted.fy(), 1) << " +- " << fixedDecimals(sigma[1], 1) << ", cx "
+        << fixedDecimals(fitted.cx(), 1) << " +- " << fixedDecimals(sigma[2], 1) << ", cy "
+        << fixedDecimals(fitted.cy(), 1) << " +- " << fixedDecimals(sigma[3], 1) << " px (were fx "
+        << input.lens.fx() << ", fy " << input.lens.fy() << ", cx " << input.lens.cx() << ", cy " << input.lens.cy()
+        << ")\n";
     if (!options.output_calibration.empty())
     {
       out << "  written to " << options.output_calibration << ": use it as calibration_file:=\n";

@@ -266,6 +266,56 @@ TEST(CalibrateProjectorSolve, OutlierIsNamedAndRejected)
   expectMount(kMount, values, 1e-5);
 }
 
+TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
+{
+  Dir dir;
+  // 9 floor points and 3 off the floor (boxes 0.3 .. 0.5 m high), exact; measured to 1 mm.
+  std::vector<TestPoint> points = floorPoints(kMount);
+  image_geometry::PinholeCameraModel lens;
+  ASSERT_TRUE(rviz_projector_test::lensFromFile(kPa503w, lens));
+  const std::vector<TestPoint> boxes = {{10, 384, 240, {0, 0, 0.4}}, {11, 896, 560, {0, 0, 0.3}},
+                                        {12, 640, 160, {0, 0, 0.5}}};
+  for (TestPoint p : boxes)
+  {
+    ASSERT_TRUE(rviz_projector_test::pixelOnPlane(lens, rviz_projector_test::opticalPoseByHand(kMount), p.u, p.v,
+                                                  p.world[2], p.world));
+    points.push_back(p);
+  }
+  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link", points));
+  const auto result =
+      calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--fit-intrinsics", "--tape-error",
+                 "1", "--output-calibration", dir.file("cal.yaml"), "--output", dir.file("mount.yaml")});
+  ASSERT_EQ(0, result.status) << result.out << result.err;
+  EXPECT_NE(std::string::npos, result.out.find("Fitted intrinsics")) << result.out;
+  // The written calibration, read back by the oracle's own loader: config/pa503w.yaml's numbers.
+  image_geometry::PinholeCameraModel fitted;
+  ASSERT_TRUE(rviz_projector_test::lensFromFile(dir.file("cal.yaml"), fitted)) << rviz_projector_test::readFile(
+      dir.file("cal.yaml"));
+  EXPECT_EQ(1280u, fitted.cameraInfo().width);
+  EXPECT_EQ(800u, fitted.cameraInfo().height);
+  EXPECT_NEAR(1900.0, fitted.fx(), 0.1);
+  EXPECT_NEAR(1900.0, fitted.fy(), 0.1);
+  EXPECT_NEAR(640.0, fitted.cx(), 0.1);
+  EXPECT_NEAR(817.0, fitted.cy(), 0.1);
+  EXPECT_NEAR(1900.0, fitted.cameraInfo().K[0], 0.1) << "K as well as P";
+  EXPECT_NEAR(817.0, fitted.cameraInfo().K[5], 0.1) << "K as well as P";
+  const YAML::Node mount = YAML::LoadFile(dir.file("mount.yaml"));
+  EXPECT_NEAR(kMount.pitch, mount["pitch"].as<double>(), 1e-5);
+}
+
+TEST(CalibrateProjectorSolve, FitIntrinsicsFromFloorPointsAloneIsRefused)
+{
+  Dir dir;
+  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link",
+                                                                                          floorPoints(kMount)));
+  const auto result = calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--fit-intrinsics",
+                                 "--output-calibration", dir.file("cal.yaml"), "--output", dir.file("mount.yaml")});
+  EXPECT_EQ(1, result.status) << result.out << result.err;
+  EXPECT_NE(std::string::npos, result.err.find("off the floor")) << result.err;
+  EXPECT_FALSE(rviz_projector_test::fileExists(dir.file("cal.yaml")));
+  EXPECT_FALSE(rviz_projector_test::fileExists(dir.file("mount.yaml")));
+}
+
 // --- bad input: status 1, the problem named, nothing written ---------------------------------------
 
 struct BadInput
@@ -344,7 +394,9 @@ std::vector<BadInput> badInputs()
       {"OnlyU", goodPointsWith("{id: 9, u: 1152, v: 720,", "{id: 9, u: 1152,"), "give both 'u' and 'v'"},
       {"Millimetres", goodPointsWith("{id: 5, u: 640, v: 400, x: ", "{id: 5, u: 640, v: 400, x: 2013, z: "),
        "point 5 (entry 5 of 'points'): 'x' is 2013, which looks like millimetres"},
-      {"ThreePoints", firstPoints(3), "4"},
+      {"ThreePoints", firstPoints(3), "need at least 4 points, got 3"},
+      {"AboveTheProjector", goodPointsWith("{id: 5, u: 640, v: 400, x: ", "{id: 5, u: 640, v: 400, z: 3.0, x: "),
+       "point 5 is behind the projector"},
       {"Collinear", rviz_projector_test::pointsYaml("base_link", collinear), "collinear"},
       {"OutsideTheImage", goodPointsWith("{id: 1, u: 128,", "{id: 1, u: 1400,"), "outside"},
       {"CalibrationFailsTheDisplaysCheck", good, "unusable calibration", calibration + "zero_focal_length.yaml"},
@@ -391,6 +443,8 @@ TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
       {"--camera-info", kPa503w, "--points", "points.yaml", "--output-calibration", "cal.yaml"},
       {"--clicked-points", "--camera-info", kPa503w},
       {"--camera-info"},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--tape-error", "0"},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--tape-error", "3mm"},
   };
   for (const auto& args : command_lines)
   {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rviz_projector/core/crosshair_pattern.h"
+#include "rviz_projector/core/mount_solver.h"
 
 namespace rviz_projector
 {
@@ -35,6 +36,8 @@ struct CalibrateOptions
   int rows = CrosshairPatternSize::kDefaultRows;
   int cols = CrosshairPatternSize::kDefaultCols;
   bool fit_intrinsics = false;
+  /// --tape-error MM: how accurately the points were measured (1 sigma), metres.
+  double tape_error = MountSolverOptions().tape_error;
 };
 
 /// Parses the arguments (without the program name). Returns "" or what is wrong with them.
