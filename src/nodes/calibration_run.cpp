@@ -29,7 +29,12 @@ std::string templateHeader(const CalibrateOptions& options, const CalibrationInp
        << "# Delete the lines of crosshairs you could not measure (at least 4 points; 6 or more spread over\n"
        << "# the image are better). u, v are the projector pixels; they may be left out (taken by id).\n"
        << "# Then: rosrun rviz_projector calibrate_projector --camera-info " << options.camera_info
-       << " --points points.yaml --output mount.yaml\n";
+       << " --points points.yaml --output mount.yaml";
+  if (options.rows != CrosshairPatternSize::kDefaultRows || options.cols != CrosshairPatternSize::kDefaultCols)
+  {
+    text << " --rows " << options.rows << " --cols " << options.cols;
+  }
+  text << "\n";
   return text.str();
 }
 

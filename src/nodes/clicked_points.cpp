@@ -78,6 +78,11 @@ int runClickedPoints(const CalibrateOptions& options, std::ostream& out, std::os
   {
     return status;
   }
+  if (!ros::master::check())
+  {
+    return reportError(err, "--clicked-points: no ROS master at " + ros::master::getURI() +
+                                " (start the robot or roscore, and rviz with the Publish Point tool)");
+  }
   ros::NodeHandle nh;
   tf2_ros::Buffer tf;
   tf2_ros::TransformListener listener(tf, nh);

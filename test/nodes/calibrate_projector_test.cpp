@@ -427,6 +427,17 @@ TEST(CalibrateProjectorBadInputs, PatternWithAnUnusableCalibration)
   EXPECT_NE(std::string::npos, result.err.find("unusable calibration")) << result.err;
 }
 
+TEST(CalibrateProjectorBadInputs, ClickedPointsWithoutARosMaster)
+{
+  Dir dir;
+  const auto result = rviz_projector_test::run({"/usr/bin/env", "ROS_MASTER_URI=http://127.0.0.1:1", kBinary,
+                                                "--clicked-points", "--camera-info", kPa503w, "--points-out",
+                                                dir.file("points.yaml")});
+  EXPECT_EQ(1, result.status) << result.out << result.err;
+  EXPECT_NE(std::string::npos, result.err.find("no ROS master at http://127.0.0.1:1")) << result.err;
+  EXPECT_FALSE(rviz_projector_test::fileExists(dir.file("points.yaml")));
+}
+
 // --- usage: status 2 ----------------------------------------------------------------------------
 
 TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
