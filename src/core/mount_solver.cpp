@@ -276,7 +276,8 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     // RMS distance of the points from their best-fitting plane (any tilt): the smallest singular
     // value of the centred points / sqrt(N).
     cv::Mat w;
-    cv::Mat rows = cv::Mat(objectPoints(points, inliers)).reshape(1);
+    const std::vector<cv::Point3d> object = objectPoints(points, inliers);  // cv::Mat only borrows it
+    const cv::Mat rows = cv::Mat(object).reshape(1);
     cv::Mat mean;
     cv::reduce(rows, mean, 0, cv::REDUCE_AVG);
     cv::SVD::compute(rows - cv::repeat(mean, rows.rows, 1), w, cv::SVD::NO_UV);

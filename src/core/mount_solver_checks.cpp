@@ -99,13 +99,15 @@ std::vector<cv::Point2d> imagePoints(const std::vector<FloorPoint>& points, cons
 
 double pixelSpreadRatio(const std::vector<FloorPoint>& points, const std::vector<int>& which)
 {
-  const std::vector<double> s = centredSingularValues(cv::Mat(imagePoints(points, which)).reshape(1));
+  const std::vector<cv::Point2d> pixels = imagePoints(points, which);  // cv::Mat only borrows it
+  const std::vector<double> s = centredSingularValues(cv::Mat(pixels).reshape(1));
   return s.size() == 2 && s[0] > 0.0 ? s[1] / s[0] : 0.0;
 }
 
 double worldSpreadRatio(const std::vector<FloorPoint>& points, const std::vector<int>& which)
 {
-  const std::vector<double> s = centredSingularValues(cv::Mat(objectPoints(points, which)).reshape(1));
+  const std::vector<cv::Point3d> world = objectPoints(points, which);  // cv::Mat only borrows it
+  const std::vector<double> s = centredSingularValues(cv::Mat(world).reshape(1));
   return s.size() == 3 && s[0] > 0.0 ? s[1] / s[0] : 0.0;
 }
 

@@ -146,6 +146,12 @@ TEST(MountSolverIntrinsics, ExactTwelvePointsRecoverLensAndPose)
   EXPECT_NEAR(s.lens.cy(), c.lens.cy, 0.05);
   EXPECT_NEAR(s.mount.z, c.mount.z, 1e-4);
   EXPECT_NEAR(s.mount.pitch, c.mount.pitch, 0.01 * kDeg);
+  // Starting from the PA503W's own lens: its principal point (cy = 817) lies below the image,
+  // which cv::calibrateCamera refuses unless the pixels are shifted.
+  const MountSolution from_true = solveMount(c.lens.model(), pts, options);
+  ASSERT_TRUE(from_true.ok) << from_true.error;
+  EXPECT_NEAR(from_true.lens.cy(), 817.0, 0.05);
+  EXPECT_NEAR(from_true.lens.fx(), 1900.0, 0.05);
 }
 
 TEST(MountSolverIntrinsics, FloorPointsAloneAreRefusedWithTheReason)

@@ -90,16 +90,28 @@ std::string floorPointsProblem(const PinholeModel& lens, const std::vector<Floor
 std::string solverLensProblem(const PinholeModel& lens);
 
 /**
- * The mount from the points. Steps: input checks (errors above); the pose from IPPE (all points
- * within 1 mm of one plane z) or SQPnP, the physically valid solution (optical centre above the
- * points, every point in front) with the smaller reprojection error, refined by Levenberg-Marquardt
- * (solvePnPRefineLM); outliers: while a point lies further than outlier_distance from the solution
- * (residual mm), the point with the largest leave-one-out residual is rejected, as long as 4
- * remain (otherwise an error); with fit_intrinsics, cv::calibrateCamera (one view, distortion
- * fixed at zero, the given lens as the start) fits the lens and pose in each of these steps and the
- * lens is refused when its standard deviations are too large (focal length > 1%, principal point
- * > 1% of the image size). Warnings (solution still given): fewer than 6 inliers, nearly collinear
- * (singular value ratio < 0.15), all pixels within 40% of the image's width and height.
+ * The mount from the points.
+ *  - Input checks: solverLensProblem, floorPointsProblem (errors, ok == false).
+ *  - Pose: IPPE when all points lie within 1 mm of one plane z = const (any height), else SQPnP and
+ *    EPnP; every candidate refined by Levenberg-Marquardt (cv::solvePnPRefineLM); the physically
+ *    valid one (optical centre above the lowest point, every point in front of the lens) with the
+ *    smallest reprojection error wins. Pixels are used as given: PinholeModel's convention is
+ *    OpenCV's (integer = pixel centre). No distortion (the project does not honour D yet).
+ *  - Outliers: while a point lies further than outlier_distance from the fit (residual mm), the
+ *    pose is fitted without each inlier in turn; the fit with the smallest truncated cost (sum of
+ *    min(residual, outlier_distance)^2 over the inliers, as MSAC) is kept and the points further
+ *    than outlier_distance from it are rejected. Fewer than 4 points left (6 with fit_intrinsics)
+ *    is an error. Deterministic (no random sampling).
+ *  - fit_intrinsics: needs points off one plane (RMS distance from their best plane >= 5 mm, else
+ *    the error explains why) and 6+ points; cv::calibrateCamera on the single view (the given lens
+ *    as the start, distortion fixed at zero; pixels shifted by one image size so that a principal
+ *    point outside the image, normal for projectors, is accepted) in every fit above; refused when
+ *    the fitted lens is too uncertain (1-sigma focal length > 2% or principal point > 4% of the
+ *    image size, from the covariance below with its 2N - 10 degrees of freedom).
+ *  - Errors after solving: a point behind the projector, the projector below the points.
+ *  - Warnings (solution still given): fewer than 6 inliers, nearly collinear (singular value ratio
+ *    < 0.15), all pixels within a box under 40% of the image's width and height, a point off by more
+ *    than outlier_distance that no single rejection explains, 2 m ahead not in the image.
  */
 MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>& points,
                          const MountSolverOptions& options = MountSolverOptions());
