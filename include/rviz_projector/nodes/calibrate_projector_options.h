@@ -1,0 +1,48 @@
+// Command line of calibrate_projector (issue 12).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rviz_projector/core/crosshair_pattern.h"
+#include "rviz_projector/core/mount_solver.h"
+
+namespace rviz_projector
+{
+/// Exit statuses of calibrate_projector.
+enum CalibrateExit
+{
+  kExitOk = 0,
+  kExitBadInput = 1,  ///< bad input or no solution: a message on stderr, nothing written
+  kExitUsage = 2,     ///< bad command line
+};
+
+struct CalibrateOptions
+{
+  enum class Mode
+  {
+    Help,
+    Pattern,
+    Solve,
+    ClickedPoints,
+  };
+  Mode mode = Mode::Solve;
+  std::string camera_info;         ///< --camera-info: calibration YAML (path, package://, file://)
+  std::string points;              ///< --points: points.yaml to solve from
+  std::string output;              ///< --output: mount.yaml to write ("" = none)
+  std::string output_calibration;  ///< --output-calibration: the fitted calibration (--fit-intrinsics)
+  std::string points_out;          ///< --points-out: points.yaml the clicked points are written to
+  std::string frame = "base_link";  ///< --frame: frame of the template / the clicked points
+  int rows = CrosshairPatternSize::kDefaultRows;
+  int cols = CrosshairPatternSize::kDefaultCols;
+  bool fit_intrinsics = false;
+  /// --tape-error MM: how accurately the points were measured (1 sigma), metres.
+  double tape_error = MountSolverOptions().tape_error;
+};
+
+/// Parses the arguments (without the program name). Returns "" or what is wrong with them.
+std::string parseCalibrateOptions(const std::vector<std::string>& args, CalibrateOptions& out);
+
+/// The --help text.
+std::string calibrateUsage();
+}  // namespace rviz_projector

@@ -1,0 +1,177 @@
+#include "rviz_projector/nodes/calibrate_projector_options.h"
+
+#include <cstdlib>
+
+namespace rviz_projector
+{
+namespace
+{
+bool parseCount(const std::string& text, int& value)
+{
+  if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
+  {
+    return false;
+  }
+  value = std::atoi(text.c_str());
+  return value >= 1 && value <= CrosshairPatternSize::kMaxRowsCols;
+}
+
+/// Millimetres, 0.1 .. 100, into metres.
+bool parseTapeError(const std::string& text, double& metres)
+{
+  char* end = nullptr;
+  const double mm = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(mm >= 0.1 && mm <= 100.0))
+  {
+    return false;
+  }
+  metres = mm / 1000.0;
+  return true;
+}
+}  // namespace
+
+std::string calibrateUsage()
+{
+  return "Usage:\n"
+         "  calibrate_projector --pattern --camera-info CAL.yaml [--rows R --cols C] [--frame F] > points.yaml\n"
+         "      print the points template: every crosshair's id and pixel u, v, with x, y to fill in\n"
+         "  calibrate_projector --camera-info CAL.yaml --points points.yaml [--output mount.yaml]\n"
+         "                      [--rows R --cols C] [--tape-error MM]\n"
+         "                      [--fit-intrinsics [--output-calibration NEW_CAL.yaml]]\n"
+         "      solve the projector's mount from the measured points and print it as projector.launch\n"
+         "      arguments, with the residuals, outliers and the expected floor error\n"
+         "  calibrate_projector --clicked-points --camera-info CAL.yaml --points-out points.yaml\n"
+         "                      [--frame base_link] [--output mount.yaml] [--rows R --cols C]\n"
+         "      a ROS node: asks for the crosshairs one by one, takes each from rviz's Publish Point tool\n"
+         "      (/clicked_point), transforms it into --frame with tf, writes points.yaml and solves\n"
+         "Options:\n"
+         "  --camera-info CAL.yaml   the projector's calibration (path, package://pkg/path or file:///path)\n"
+         "  --rows R, --cols C       crosshair pattern size, 1.." +
+         std::to_string(CrosshairPatternSize::kMaxRowsCols) + " (default " +
+         std::to_string(CrosshairPatternSize::kDefaultRows) + "x" + std::to_string(CrosshairPatternSize::kDefaultCols) +
+         "); must match the display's\n"
+         "  --frame F                frame of the points (default base_link)\n"
+         "  --tape-error MM          how accurately the points were measured, 1 sigma in mm (default " +
+         std::to_string(static_cast<int>(MountSolverOptions().tape_error * 1000.0 + 0.5)) +
+         "):\n"
+         "                           sets the outlier threshold and the expected error\n"
+         "  --fit-intrinsics         also fit fx, fy, cx, cy (needs points off the floor, z given)\n"
+         "Exit status: 0 solved/written, 1 bad input or no solution (nothing written), 2 bad command line.\n";
+}
+
+std::string parseCalibrateOptions(const std::vector<std::string>& args, CalibrateOptions& out)
+{
+  out = CalibrateOptions();
+  bool pattern = false;
+  bool clicked = false;
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    const std::string& arg = args[i];
+    if (arg == "-h" || arg == "--help")
+    {
+      out.mode = CalibrateOptions::Mode::Help;
+      return "";
+    }
+    if (arg == "--pattern")
+    {
+      pattern = true;
+      continue;
+    }
+    if (arg == "--clicked-points")
+    {
+      clicked = true;
+      continue;
+    }
+    if (arg == "--fit-intrinsics")
+    {
+      out.fit_intrinsics = true;
+      continue;
+    }
+    std::string* text = nullptr;
+    int* count = nullptr;
+    double* tape_error = nullptr;
+    if (arg == "--camera-info")
+      text = &out.camera_info;
+    else if (arg == "--points")
+      text = &out.points;
+    else if (arg == "--output")
+      text = &out.output;
+    else if (arg == "--output-calibration")
+      text = &out.output_calibration;
+    else if (arg == "--points-out")
+      text = &out.points_out;
+    else if (arg == "--frame")
+      text = &out.frame;
+    else if (arg == "--rows")
+      count = &out.rows;
+    else if (arg == "--tape-error")
+      tape_error = &out.tape_error;
+    else if (arg == "--cols")
+      count = &out.cols;
+    else
+      return "unknown argument '" + arg + "'";
+    if (i + 1 >= args.size() || args[i + 1].empty())
+    {
+      return arg + " needs a value";
+    }
+    const std::string& value = args[++i];
+    if (text != nullptr)
+    {
+      *text = value;
+    }
+    else if (tape_error != nullptr)
+    {
+      if (!parseTapeError(value, *tape_error))
+      {
+        return arg + " must be millimetres from 0.1 to 100 (got '" + value + "')";
+      }
+    }
+    else if (!parseCount(value, *count))
+    {
+      return arg + " must be a whole number from 1 to " + std::to_string(CrosshairPatternSize::kMaxRowsCols) +
+             " (got '" + value + "')";
+    }
+  }
+  if (pattern && clicked)
+  {
+    return "--pattern and --clicked-points exclude each other";
+  }
+  out.mode = pattern ? CalibrateOptions::Mode::Pattern
+                     : clicked ? CalibrateOptions::Mode::ClickedPoints : CalibrateOptions::Mode::Solve;
+  if (out.camera_info.empty())
+  {
+    return "--camera-info CAL.yaml is required (the projector's calibration)";
+  }
+  if (out.frame.empty())
+  {
+    return "--frame needs a frame name";
+  }
+  if (pattern && (!out.points.empty() || !out.output.empty() || out.fit_intrinsics || !out.points_out.empty() ||
+                  out.tape_error != MountSolverOptions().tape_error))
+  {
+    return "--pattern only prints the template: it takes --camera-info, --rows, --cols and --frame";
+  }
+  if (out.mode == CalibrateOptions::Mode::Solve && out.points.empty())
+  {
+    return "--points points.yaml is required to solve (or --pattern to print the template, --clicked-points "
+           "to click them in rviz)";
+  }
+  if (out.mode == CalibrateOptions::Mode::Solve && !out.points_out.empty())
+  {
+    return "--points-out is for --clicked-points";
+  }
+  if (clicked && !out.points.empty())
+  {
+    return "--clicked-points takes the points from rviz: use --points-out for the file to write";
+  }
+  if (clicked && out.points_out.empty())
+  {
+    return "--clicked-points needs --points-out points.yaml (the file the clicked points are written to)";
+  }
+  if (!out.output_calibration.empty() && !out.fit_intrinsics)
+  {
+    return "--output-calibration needs --fit-intrinsics";
+  }
+  return "";
+}
+}  // namespace rviz_projector

@@ -1,0 +1,373 @@
+#include "rviz_projector/nodes/calibration_points_file.h"
+
+#include "rviz_projector/nodes/number_format.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+namespace rviz_projector
+{
+namespace
+{
+std::string describe(const YAML::Node& node)
+{
+  switch (node.Type())
+  {
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Null:
+      return "nothing";
+    default:
+      return "an undefined value";
+  }
+}
+
+bool asDouble(const YAML::Node& node, double& value)
+{
+  if (!node.IsScalar())
+  {
+    return false;
+  }
+  try
+  {
+    value = node.as<double>();
+    return true;
+  }
+  catch (const YAML::Exception&)
+  {
+    return false;
+  }
+}
+
+/// "3" from a list of ids: "1, 4, 7".
+std::string idList(const std::vector<int>& ids)
+{
+  std::string text;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    text += (i == 0 ? "" : ", ") + std::to_string(ids[i]);
+  }
+  return text;
+}
+
+/// Reads one entry of `points`. Returns "" or the problem (without the file name). `measured` is
+/// false when x or y is still null (or left out).
+class EntryReader
+{
+public:
+  EntryReader(const YAML::Node& entry, std::size_t index) : entry_(entry), index_(index) {}
+
+  std::string where() const
+  {
+    std::string text = "entry " + std::to_string(index_ + 1) + " of 'points'";
+    return has_id_ ? "point " + std::to_string(id_) + " (" + text + ")" : text;
+  }
+
+  std::string read(const std::vector<Crosshair>& pattern, const std::string& pattern_name, FloorPoint& point,
+                   bool& measured)
+  {
+    if (!entry_.IsMap())
+    {
+      return where() + " must be a map like {id: 1, u: 192.0, v: 120.0, x: 2.013, y: 0.871} (got " +
+             describe(entry_) + ")";
+    }
+    std::string error = readId();
+    if (!error.empty())
+    {
+      return error;
+    }
+    for (const auto& key_value : entry_)
+    {
+      const std::string key = key_value.first.IsScalar() ? key_value.first.Scalar() : "?";
+      if (key != "id" && key != "u" && key != "v" && key != "x" && key != "y" && key != "z")
+      {
+        return where() + ": unknown field '" + key + "' (expected id, u, v, x, y and optionally z)";
+      }
+    }
+    point.id = id_;
+    const YAML::Node u = entry_["u"];
+    const YAML::Node v = entry_["v"];
+    if (static_cast<bool>(u) != static_cast<bool>(v))
+    {
+      return where() + ": give both 'u' and 'v' (the crosshair's pixel) or neither (then they come from the "
+                       "pattern by id)";
+    }
+    if (u)
+    {
+      if (!(error = number(u, "u", point.pixel.x)).empty() || !(error = number(v, "v", point.pixel.y)).empty())
+      {
+        return error;
+      }
+    }
+    else
+    {
+      bool found = false;
+      for (const Crosshair& crosshair : pattern)
+      {
+        if (crosshair.id == id_)
+        {
+          point.pixel = crosshair.pixel;
+          found = true;
+        }
+      }
+      if (!found)
+      {
+        return where() + ": unknown id " + std::to_string(id_) + ": " + pattern_name + " has ids 1.." +
+               std::to_string(pattern.size()) + " (give the point's u and v, or the pattern's --rows/--cols)";
+      }
+    }
+    measured = true;
+    for (const char* key : {"x", "y"})
+    {
+      const YAML::Node value = entry_[key];
+      if (!value || value.IsNull())
+      {
+        measured = false;
+      }
+    }
+    if (measured)
+    {
+      if (!(error = metres(entry_["x"], "x", point.world.x)).empty() ||
+          !(error = metres(entry_["y"], "y", point.world.y)).empty())
+      {
+        return error;
+      }
+    }
+    point.world.z = 0.0;
+    const YAML::Node z = entry_["z"];
+    if (z && !z.IsNull())
+    {
+      return metres(z, "z", point.world.z);
+    }
+    return "";
+  }
+
+  int id() const { return id_; }
+
+private:
+  std::string readId()
+  {
+    const YAML::Node node = entry_["id"];
+    if (!node)
+    {
+      return where() + " has no 'id' (the crosshair's number)";
+    }
+    double value = 0.0;
+    if (!asDouble(node, value) || !std::isfinite(value) || value != std::floor(value) || value < 0.0 ||
+        value > std::numeric_limits<int>::max())
+    {
+      return where() + ": 'id' must be a whole number >= 0, the crosshair's number (got " + describe(node) + ")";
+    }
+    id_ = static_cast<int>(value);
+    has_id_ = true;
+    return "";
+  }
+
+  std::string number(const YAML::Node& node, const std::string& field, double& value) const
+  {
+    if (!asDouble(node, value))
+    {
+      return where() + ": '" + field + "' is not a number (got " + describe(node) + ")";
+    }
+    if (!std::isfinite(value))
+    {
+      return where() + ": '" + field + "' is not finite (got " + describe(node) + ")";
+    }
+    return "";
+  }
+
+  std::string metres(const YAML::Node& node, const std::string& field, double& value) const
+  {
+    const std::string error = number(node, field, value);
+    if (!error.empty())
+    {
+      return error;
+    }
+    if (std::abs(value) > kMaxPointCoordinate)
+    {
+      std::ostringstream text;
+      text << where() << ": '" << field << "' is " << value << ", which looks like millimetres: the file is in "
+           << "metres (|" << field << "| <= " << kMaxPointCoordinate << ")";
+      return text.str();
+    }
+    return "";
+  }
+
+  const YAML::Node& entry_;
+  std::size_t index_;
+  int id_ = 0;
+  bool has_id_ = false;
+};
+
+std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pattern,
+                         const std::string& pattern_name, CalibrationPoints& out)
+{
+  if (doc.IsNull())
+  {
+    return "the file is empty (calibrate_projector --pattern writes a template)";
+  }
+  if (!doc.IsMap())
+  {
+    return "expected a map with 'frame' and 'points', got " + describe(doc);
+  }
+  for (const auto& key_value : doc)
+  {
+    const std::string key = key_value.first.IsScalar() ? key_value.first.Scalar() : "?";
+    if (key != "frame" && key != "points")
+    {
+      return "unknown field '" + key + "' (expected 'frame' and 'points')";
+    }
+  }
+  const YAML::Node frame = doc["frame"];
+  if (!frame)
+  {
+    return "missing field 'frame' (the frame the points are measured in, e.g. base_link)";
+  }
+  if (!frame.IsScalar() || frame.Scalar().empty())
+  {
+    return "field 'frame' must be a frame name, e.g. base_link (got " + describe(frame) + ")";
+  }
+  out.frame = frame.Scalar();
+  const YAML::Node points = doc["points"];
+  if (!points)
+  {
+    return "missing field 'points' (the list of measured crosshairs)";
+  }
+  if (!points.IsSequence())
+  {
+    return "field 'points' must be a list of {id, u, v, x, y} (got " + describe(points) + ")";
+  }
+  std::map<int, std::size_t> entry_of_id;
+  std::vector<int> not_measured;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const YAML::Node entry = points[i];
+    EntryReader reader(entry, i);
+    FloorPoint point;
+    bool measured = false;
+    const std::string error = reader.read(pattern, pattern_name, point, measured);
+    if (!error.empty())
+    {
+      return error;
+    }
+    const auto duplicate = entry_of_id.find(point.id);
+    if (duplicate != entry_of_id.end())
+    {
+      return "duplicate id " + std::to_string(point.id) + " (entries " + std::to_string(duplicate->second + 1) +
+             " and " + std::to_string(i + 1) + " of 'points')";
+    }
+    entry_of_id[point.id] = i;
+    if (!measured)
+    {
+      not_measured.push_back(point.id);
+    }
+    out.points.push_back(point);
+  }
+  if (!not_measured.empty())
+  {
+    return std::string(not_measured.size() == 1 ? "point " : "points ") + idList(not_measured) +
+           (not_measured.size() == 1 ? " is" : " are") +
+           " not measured yet (x or y is null or missing): fill in x and y in metres, or delete the points you "
+           "could not measure";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string readCalibrationPoints(const std::string& path, const std::vector<Crosshair>& pattern,
+                                  const std::string& pattern_name, CalibrationPoints& out)
+{
+  out = CalibrationPoints();
+  if (!std::ifstream(path).good())
+  {
+    return path + ": cannot be read (no such file, or no permission)";
+  }
+  YAML::Node doc;
+  try
+  {
+    doc = YAML::LoadFile(path);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    std::ostringstream error;
+    error << path << ": not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": "
+          << e.msg;
+    return error.str();
+  }
+  catch (const YAML::Exception& e)
+  {
+    return path + ": cannot be read as YAML: " + e.what();
+  }
+  const std::string error = readDocument(doc, pattern, pattern_name, out);
+  if (!error.empty())
+  {
+    out = CalibrationPoints();
+    return path + ": " + error;
+  }
+  return "";
+}
+
+std::string calibrationPointsTemplate(const std::vector<Crosshair>& pattern, const std::string& frame,
+                                      const std::string& header_comment)
+{
+  std::ostringstream text;
+  text << header_comment << "frame: " << frame << "\n"
+       << "points:\n";
+  for (const Crosshair& crosshair : pattern)
+  {
+    text << "  - {id: " << crosshair.id << ", u: " << fixedDecimals(crosshair.pixel.x, 1)
+         << ", v: " << fixedDecimals(crosshair.pixel.y, 1) << ", x: null, y: null}\n";
+  }
+  return text.str();
+}
+
+std::string calibrationPointsYaml(const CalibrationPoints& points, const std::string& header_comment)
+{
+  std::ostringstream text;
+  text << header_comment << "frame: " << points.frame << "\n"
+       << "points:\n";
+  for (const FloorPoint& point : points.points)
+  {
+    text << "  - {id: " << point.id << ", u: " << fixedDecimals(point.pixel.x, 3) << ", v: " << fixedDecimals(point.pixel.y, 3)
+         << ", x: " << fixedDecimals(point.world.x, 6) << ", y: " << fixedDecimals(point.world.y, 6)
+         << ", z: " << fixedDecimals(point.world.z, 6) << "}\n";
+  }
+  return text.str();
+}
+
+std::string writeTextFile(const std::string& path, const std::string& text)
+{
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::trunc);
+    if (!file)
+    {
+      return path + ": cannot be written (no such directory, or no permission)";
+    }
+    file << text;
+    file.flush();
+    if (!file)
+    {
+      std::remove(temporary.c_str());
+      return path + ": writing failed (disk full?)";
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    std::remove(temporary.c_str());
+    return path + ": cannot be written (rename of " + temporary + " failed)";
+  }
+  return "";
+}
+}  // namespace rviz_projector

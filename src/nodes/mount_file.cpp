@@ -1,0 +1,166 @@
+#include "rviz_projector/nodes/mount_file.h"
+
+#include "rviz_projector/nodes/number_format.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+namespace rviz_projector
+{
+namespace
+{
+std::string describe(const YAML::Node& node)
+{
+  switch (node.Type())
+  {
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Null:
+      return "nothing";
+    default:
+      return "an undefined value";
+  }
+}
+
+std::string readNumber(const YAML::Node& doc, const char* field, const char* unit, double& value)
+{
+  const YAML::Node node = doc[field];
+  if (!node)
+  {
+    return std::string("missing field '") + field + "' (" + unit + ")";
+  }
+  bool number = node.IsScalar();
+  if (number)
+  {
+    try
+    {
+      value = node.as<double>();
+    }
+    catch (const YAML::Exception&)
+    {
+      number = false;
+    }
+  }
+  if (!number)
+  {
+    return std::string("field '") + field + "' is not a number (got " + describe(node) + ")";
+  }
+  if (!std::isfinite(value))
+  {
+    return std::string("field '") + field + "' is not finite (got " + describe(node) + ")";
+  }
+  return "";
+}
+
+std::string readDocument(const YAML::Node& doc, MountFile& out)
+{
+  if (doc.IsNull())
+  {
+    return "the file is empty (calibrate_projector --output writes a mount file)";
+  }
+  if (!doc.IsMap())
+  {
+    return "expected a map with parent_frame, x, y, z, roll, pitch, yaw, got " + describe(doc);
+  }
+  const YAML::Node frame = doc["parent_frame"];
+  if (!frame)
+  {
+    return "missing field 'parent_frame' (the frame the projector is mounted on, e.g. base_link)";
+  }
+  if (!frame.IsScalar() || frame.Scalar().empty())
+  {
+    return "field 'parent_frame' must be a frame name, e.g. base_link (got " + describe(frame) + ")";
+  }
+  out.parent_frame = frame.Scalar();
+  struct Field
+  {
+    const char* name;
+    const char* unit;
+    double* value;
+  };
+  const Field fields[] = {
+      {"x", "metres", &out.mount.x},        {"y", "metres", &out.mount.y},
+      {"z", "metres", &out.mount.z},        {"roll", "radians", &out.mount.roll},
+      {"pitch", "radians", &out.mount.pitch}, {"yaw", "radians", &out.mount.yaw},
+  };
+  for (const Field& field : fields)
+  {
+    const std::string error = readNumber(doc, field.name, field.unit, *field.value);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return "";
+}
+}  // namespace
+
+std::string mountFileYaml(const std::string& parent_frame, const MountSolution& solution,
+                          const std::string& header_comment)
+{
+  const ProjectorMount& m = solution.mount;
+  std::ostringstream text;
+  text << header_comment << "parent_frame: " << parent_frame << "\n"
+       << "x: " << fixedDecimals(m.x, 6) << "\n"
+       << "y: " << fixedDecimals(m.y, 6) << "\n"
+       << "z: " << fixedDecimals(m.z, 6) << "\n"
+       << "roll: " << fixedDecimals(m.roll, 8) << "\n"
+       << "pitch: " << fixedDecimals(m.pitch, 8) << "\n"
+       << "yaw: " << fixedDecimals(m.yaw, 8) << "\n"
+       << "rms_px: " << fixedDecimals(solution.rms_px, 3) << "\n"
+       << "rms_mm: " << fixedDecimals(solution.rms_mm, 2) << "\n"
+       << "outliers: [";
+  for (std::size_t i = 0; i < solution.outliers.size(); ++i)
+  {
+    text << (i == 0 ? "" : ", ") << solution.outliers[i];
+  }
+  text << "]\nresiduals: [";
+  for (std::size_t i = 0; i < solution.residuals.size(); ++i)
+  {
+    const PointResidual& r = solution.residuals[i];
+    text << (i == 0 ? "" : ", ") << "{id: " << r.id << ", px: " << fixedDecimals(r.px, 3) << ", mm: " << fixedDecimals(r.mm, 2)
+         << "}";
+  }
+  text << "]\n";
+  return text.str();
+}
+
+std::string readMountFile(const std::string& path, MountFile& out)
+{
+  out = MountFile();
+  if (!std::ifstream(path).good())
+  {
+    return path + ": cannot be read (no such file, or no permission)";
+  }
+  YAML::Node doc;
+  try
+  {
+    doc = YAML::LoadFile(path);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    std::ostringstream error;
+    error << path << ": not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": "
+          << e.msg;
+    return error.str();
+  }
+  catch (const YAML::Exception& e)
+  {
+    return path + ": cannot be read as YAML: " + e.what();
+  }
+  const std::string error = readDocument(doc, out);
+  if (!error.empty())
+  {
+    out = MountFile();
+    return path + ": " + error;
+  }
+  return "";
+}
+}  // namespace rviz_projector
