@@ -17,8 +17,6 @@ namespace mount_solver_detail
 {
 namespace
 {
-/// A value this large in metres is almost certainly millimetres.
-constexpr double kMillimetreSuspicion = 50.0;
 /// Singular value ratio below which the points are collinear (error) / nearly so (warning).
 constexpr double kCollinearError = 0.02;
 constexpr double kCollinearWarning = 0.15;
@@ -199,7 +197,7 @@ std::string floorPointsProblem(const PinholeModel& lens, const std::vector<Floor
       return which + "pixel (" + num(p.pixel.x) + ", " + num(p.pixel.y) + ") is outside the projector's image (" +
              std::to_string(lens.width()) + " x " + std::to_string(lens.height()) + ")";
     }
-    const double k = mount_solver_detail::kMillimetreSuspicion;
+    const double k = kMaxFloorPointCoordinate;
     if (std::fabs(p.world.x) > k || std::fabs(p.world.y) > k || std::fabs(p.world.z) > k)
     {
       return which + "(" + num(p.world.x) + ", " + num(p.world.y) + ", " + num(p.world.z) +

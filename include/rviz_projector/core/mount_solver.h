@@ -32,6 +32,9 @@ struct PointResidual
   bool outlier = false;
 };
 
+/// A point coordinate beyond this (metres) is refused: it is almost certainly millimetres.
+constexpr double kMaxFloorPointCoordinate = 50.0;
+
 struct MountSolverOptions
 {
   /// Expected measurement error of a floor point (tape measure), metres, 1 sigma.

@@ -19,8 +19,9 @@
 
 namespace rviz_projector
 {
-/// Coordinates beyond this (metres) look like millimetres typed into a file in metres.
-constexpr double kMaxPointCoordinate = 50.0;
+/// Coordinates beyond this (metres) look like millimetres typed into a file in metres: the core's
+/// limit, checked here too so that the message names the point and the field.
+constexpr double kMaxPointCoordinate = kMaxFloorPointCoordinate;
 
 struct CalibrationPoints
 {
