@@ -94,7 +94,8 @@ def main():
     print("microbenchmarks (%s CPUs at %s MHz; load %s; Google Benchmark library build: %s)" % (
         context.get("num_cpus", "?"), context.get("mhz_per_cpu", "?"),
         " ".join("%.2f" % x for x in context.get("load_avg", [])), build or "?"))
-    print("size: poses (Spacer, PathUpdate) or arrows (ArrowOutline); items/s likewise; time: CPU time per call;")
+    print("size: poses (Spacer, PathUpdate), arrows (ArrowOutline) or measured points (MountSolve); items/s likewise;")
+    print("time: CPU time per call;")
     print("ours/baseline: time ratio against the reference pipeline's algorithm on the same input (< 1 is faster)")
     print(fmt(header))
     print("  ".join("-" * w for w in widths))

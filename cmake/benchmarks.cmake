@@ -1,6 +1,7 @@
 # Benchmarks: built with the package, run by scripts/bench (never by the tests).
 #  - rviz_projector_microbench: Google Benchmark microbenchmarks of the core and of the
-#    ProjectedPath CPU update, each next to a re-implementation of the reference pipeline.
+#    ProjectedPath CPU update, each next to a re-implementation of the reference pipeline, and of
+#    the mount calibration's solver.
 #  - rviz_projector_bench_probe: the end-to-end bench's X11 probe and ROS driver (scripts/bench --e2e).
 # Each is skipped, with a message, when its libraries are missing.
 
@@ -9,6 +10,7 @@ if(benchmark_FOUND)
   #catkin_lint: ignore uninstalled_target
   add_executable(${PROJECT_NAME}_microbench
     bench/micro/bench_paths.cpp
+    bench/micro/calibration_benchmarks.cpp
     bench/micro/mesh_benchmarks.cpp
     bench/micro/micro_benchmarks.cpp
     bench/micro/reference_baseline.cpp

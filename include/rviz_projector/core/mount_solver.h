@@ -61,14 +61,46 @@ struct MountSolution
   std::vector<int> outliers;          ///< ids rejected
   double rms_px = 0.0;                ///< over the inliers
   double rms_mm = 0.0;
-  std::array<double, 36> covariance{};  ///< of (rx, ry, rz, tx, ty, tz) of the optical pose, row-major
-  std::vector<ExpectedError> expected;  ///< at the pattern's corners and 2 m ahead of the mount
+  /// Of (rx, ry, rz, tx, ty, tz): OpenCV's rotation vector and translation of the parent frame in
+  /// the optical frame (what solvePnP returns; p_optical = R(r) p_parent + t), row-major.
+  /// The measurement error is on the floor, the fit minimises pixels, so: the sandwich
+  /// H^-1 (sum J_i^T S_i J_i) H^-1 with H = J^T J, J the reprojection Jacobian of the inliers
+  /// (cv::projectPoints), S_i = sigma^2 A_i A_i^T the pixel covariance of point i (A_i = d(u, v) /
+  /// d(x, y) on its plane), sigma^2 the a-posteriori variance of a coordinate, sum(|residual on the
+  /// plane|^2) / (2N - 6), but never less than tape_error^2 (so exact data does not claim zero error).
+  /// With fit_intrinsics the pose block of the joint (pose, fx, fy, cx, cy) covariance (2N - 10).
+  std::array<double, 36> covariance{};
+  /// 1-sigma radial floor error (sqrt of the trace of the propagated 2x2 covariance) at the input's
+  /// extreme crosshairs (top-left, top-right, bottom-left, bottom-right pixel among the inliers) and
+  /// at the floor point 2 m ahead of the mount along its yaw (parent x, y + 2 m (cos yaw, sin yaw),
+  /// z = 0) when that is in the image (otherwise a warning says so).
+  std::vector<ExpectedError> expected;
+  /// With fit_intrinsics: 1-sigma of the fitted fx, fy, cx, cy (pixels), same sigma as covariance.
+  std::array<double, 4> lens_stddev{};
 };
 
 /// Problems of the input alone ("" when fine): fewer than 4 points, NaN/Inf, duplicate ids,
-/// pixels outside the lens's image, values that look like millimetres, collinear points.
+/// pixels outside the lens's image, values that look like millimetres (|x|, |y| or |z| > 50),
+/// collinear points (smallest / largest singular value of the centred pixels, or of the centred
+/// world points' two main directions, below 0.02).
 std::string floorPointsProblem(const PinholeModel& lens, const std::vector<FloorPoint>& points);
 
+/// Problems of the lens for solving ("" when fine): no image, focal lengths not positive and
+/// finite, Tx or Ty not zero (a projector has no stereo baseline).
+std::string solverLensProblem(const PinholeModel& lens);
+
+/**
+ * The mount from the points. Steps: input checks (errors above); the pose from IPPE (all points
+ * within 1 mm of one plane z) or SQPnP, the physically valid solution (optical centre above the
+ * points, every point in front) with the smaller reprojection error, refined by Levenberg-Marquardt
+ * (solvePnPRefineLM); outliers: while a point lies further than outlier_distance from the solution
+ * (residual mm), the point with the largest leave-one-out residual is rejected, as long as 4
+ * remain (otherwise an error); with fit_intrinsics, cv::calibrateCamera (one view, distortion
+ * fixed at zero, the given lens as the start) fits the lens and pose in each of these steps and the
+ * lens is refused when its standard deviations are too large (focal length > 1%, principal point
+ * > 1% of the image size). Warnings (solution still given): fewer than 6 inliers, nearly collinear
+ * (singular value ratio < 0.15), all pixels within 40% of the image's width and height.
+ */
 MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>& points,
                          const MountSolverOptions& options = MountSolverOptions());
 
