@@ -371,7 +371,6 @@ TEST_F(CrosshairsTest, NeverInRvizsMainView)
   EXPECT_TRUE(during == before) << "rviz's main view changed with the projector's test pattern";
 }
 
-#if 0  // TEMP until the solver lands
 TEST_F(CrosshairsTest, RoundTripFromRenderedPixelsRecoversTheMount)
 {
   // The true mount of the projector (what the solver must find). The floor points are where the
@@ -414,8 +413,6 @@ TEST_F(CrosshairsTest, RoundTripFromRenderedPixelsRecoversTheMount)
   EXPECT_NEAR(deg(solution.mount.yaw), deg(yaw), 0.05);
   EXPECT_TRUE(solution.outliers.empty());
 }
-
-#endif
 
 // --- configs: Test pattern was a bool before issue 12 ---------------------------------------------
 
