@@ -21,6 +21,7 @@
 #include <rviz/display_group.h>
 #include <rviz/visualization_manager.h>
 #include <rviz/yaml_config_reader.h>
+#include <sensor_msgs/Image.h>
 
 #include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/core/mount_solver.h"
@@ -354,6 +355,31 @@ TEST_F(CrosshairsTest, IndependentOfThePoseAndShownWithoutTf)
   // Metric grid needs the pose: without tf the projector goes dark.
   projector_->subProp("Test pattern")->setValue("Metric grid");
   EXPECT_EQ(countColour(grabWhen([&](const QImage& w) { return countColour(w, kWhite, 30) == 0; }), kWhite, 30), 0);
+}
+
+TEST_F(CrosshairsTest, PublishedImageShowsThePattern)
+{
+  const sensor_msgs::CameraInfo info = projectorInfo(1280, 800, 1300, 639.5, 399.5);
+  mount(m_);
+  sensor_msgs::Image::ConstPtr image;
+  ros::Subscriber sub = nh_.subscribe<sensor_msgs::Image>(
+      "/test/crosshairs/image", 1, [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
+  projector_->subProp("Image output")->subProp("Image topic")->setValue("/test/crosshairs/image");
+  projector_->subProp("Image output")->subProp("Image rate")->setValue(20.0);
+  projector_->subProp("Image output")->setValue(true);
+  const QImage window = showCrosshairs(info, 3, 3);
+  expectPattern(window, info, 3, 3);
+  // An image published after the pattern is up: the image part of the window, pixel for pixel.
+  const PixelOracle oracle(info, m_);
+  const Letterbox box = oracle.box(window.width(), window.height());
+  const QImage expected = window.copy(box.left, box.top, box.width, box.height);
+  ASSERT_TRUE(waitFor([&] {
+    projector_->renderNow();
+    return image && int(image->width) == expected.width() && int(image->height) == expected.height() &&
+           image->encoding == "rgb8" &&
+           QImage(image->data.data(), int(image->width), int(image->height), int(image->step), QImage::Format_RGB888) ==
+               expected.convertToFormat(QImage::Format_RGB888);
+  })) << "no published image equal to the window's image part";
 }
 
 TEST_F(CrosshairsTest, NeverInRvizsMainView)
