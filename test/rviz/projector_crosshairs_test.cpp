@@ -89,8 +89,9 @@ double brightness(QRgb c)
 /// file comment. False when no white pixel is within 4 px of `around`.
 bool crossCentre(const QImage& window, const Vec2& around, int reach, Vec2& centre)
 {
-  const int x0 = std::max(0, int(std::lround(around.x)) - reach), x1 = std::min(window.width() - 1, int(std::lround(around.x)) + reach);
-  const int y0 = std::max(0, int(std::lround(around.y)) - reach), y1 = std::min(window.height() - 1, int(std::lround(around.y)) + reach);
+  const int ax = int(std::lround(around.x)), ay = int(std::lround(around.y));
+  const int x0 = std::max(0, ax - reach), x1 = std::min(window.width() - 1, ax + reach);
+  const int y0 = std::max(0, ay - reach), y1 = std::min(window.height() - 1, ay + reach);
   if (x0 > x1 || y0 > y1)
   {
     return false;
@@ -497,7 +498,8 @@ TEST_F(CrosshairsConfigTest, CrosshairsWithRowsAndColumnsLoadAndNonsenseIsReport
   d = loadProjector("    Test pattern:\n      Value: Sparkles\n      Rows: 99\n");
   ASSERT_NE(d, nullptr);
   EXPECT_EQ(pattern(d), "Off");
-  EXPECT_EQ(d->subProp("Test pattern")->subProp("Rows")->getValue().toInt(), rviz_projector::CrosshairPatternSize::kMaxRowsCols);
+  EXPECT_EQ(d->subProp("Test pattern")->subProp("Rows")->getValue().toInt(),
+            rviz_projector::CrosshairPatternSize::kMaxRowsCols);
   const Status s = statusOf(d, "Config");
   ASSERT_TRUE(s.present);
   EXPECT_NE(s.text.indexOf("Test pattern: 'Sparkles' -> Off"), -1) << s.text.toStdString();
