@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <OgreRenderWindow.h>
+#include <OgreViewport.h>
 #include <QGuiApplication>
 #include <QScreen>
 #include <QWidget>
@@ -27,6 +28,7 @@
 #include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projection_gate.h"
+#include "rviz_projector/displays/projector_crosshairs.h"
 #include "rviz_projector/displays/projector_floor_overlay.h"
 #include "rviz_projector/displays/projector_image_publisher.h"
 #include "rviz_projector/displays/projector_lens_source.h"
@@ -62,6 +64,7 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
   output_.reset();  // listener, viewport, render window, widget
   gate_.reset();
   overlay_.reset();
+  crosshairs_.reset();
   view_.reset();
   if (vis_bit_ != 0)
   {
@@ -92,6 +95,7 @@ void ProjectorCameraDisplay::onInitialize()
   connect(output_.get(), &ProjectorOutput::closedByUser, this, &ProjectorCameraDisplay::onWindowClosed);
   image_publisher_ = std::make_unique<ProjectorImagePublisher>();
   overlay_ = std::make_unique<ProjectorFloorOverlay>(scene_manager_, scene_node_);
+  crosshairs_ = std::make_unique<ProjectorCrosshairs>();
 
   connect(qApp, SIGNAL(screenAdded(QScreen*)), this, SLOT(onScreensChanged()));
   connect(qApp, SIGNAL(screenRemoved(QScreen*)), this, SLOT(onScreensChanged()));
@@ -101,12 +105,17 @@ void ProjectorCameraDisplay::onInitialize()
   clock_.start();
   updateFrameRate();
   applyProjection();
+  showVisibilityStatus();
+  showLensStatuses();
+}
+
+void ProjectorCameraDisplay::showVisibilityStatus()
+{
   if (vis_bit_ == 0)
   {
     setStatus(rviz::StatusProperty::Error, "Visibility",
               "All 32 visibility bits are in use (too many camera displays): the projector view stays empty");
   }
-  showLensStatuses();
 }
 
 void ProjectorCameraDisplay::onEnable()
@@ -131,14 +140,7 @@ void ProjectorCameraDisplay::onDisable()
 void ProjectorCameraDisplay::checkMainViewCost()
 {
   const std::string warning = mainViewCostWarning(*context_);
-  if (warning.empty())
-  {
-    deleteStatus("Main view");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Main view", QString::fromStdString(warning));
-  }
+  warnIf("Main view", QString::fromStdString(warning));
 }
 
 void ProjectorCameraDisplay::reset()
@@ -151,11 +153,7 @@ void ProjectorCameraDisplay::reset()
   // Raise again, at once, every problem that still holds.
   transform_state_ = -1;
   overlay_->invalidate();
-  if (vis_bit_ == 0)
-  {
-    setStatus(rviz::StatusProperty::Error, "Visibility",
-              "All 32 visibility bits are in use (too many camera displays): the projector view stays empty");
-  }
+  showVisibilityStatus();
   checkMainViewCost();
   showLensStatuses();
   applyProjection();
@@ -186,14 +184,7 @@ void ProjectorCameraDisplay::load(const rviz::Config& config)
     setStatus(rviz::StatusProperty::Warn, "Output",
               QString("Screen '%1' is not connected").arg(QString::fromStdString(wanted)));
   }
-  if (replaced.isEmpty())
-  {
-    deleteStatus("Config");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + replaced);
-  }
+  warnIf("Config", replaced.isEmpty() ? replaced : "Unusable values in the config replaced: " + replaced);
 }
 
 void ProjectorCameraDisplay::fixedFrameChanged()
@@ -243,14 +234,7 @@ void ProjectorCameraDisplay::showLensStatuses()
   for (const auto& warning : {std::make_pair(QString("Distortion"), s.distortion),
                               std::make_pair(QString("Field of view"), s.field_of_view)})
   {
-    if (warning.second.isEmpty())
-    {
-      deleteStatus(warning.first);
-    }
-    else
-    {
-      setStatus(rviz::StatusProperty::Warn, warning.first, warning.second);
-    }
+    warnIf(warning.first, warning.second);
   }
 }
 
@@ -283,17 +267,12 @@ void ProjectorCameraDisplay::applyProjection()
   }
   const std::string clip = view_->setProjection(hasLens() ? &lens() : nullptr, props_.near_clip->getFloat(),
                                                 props_.far_clip->getFloat());
-  if (clip.empty())
-  {
-    deleteStatus("Clipping");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Clipping", QString::fromStdString(clip));
-  }
+  warnIf("Clipping", QString::fromStdString(clip));
   if (output_)
   {
-    output_->setBackground(props_.background->getOgreColor());
+    // The crosshairs are white on black, whatever the background colour.
+    output_->setBackground(props_.testPattern() == TestPattern::Crosshairs ? Ogre::ColourValue::Black :
+                                                                               props_.background->getOgreColor());
   }
   context_->queueRender();
 }
@@ -318,16 +297,30 @@ void ProjectorCameraDisplay::updateFootprintVisible()
 void ProjectorCameraDisplay::updateTestPattern()
 {
   markChanged();
+  props_.showTestPatternOptions();
   if (!overlay_)
   {
     return;
   }
   overlay_->invalidate();  // the grid follows the fixed frame: compute it again
-  if (!props_.test_pattern->getBool())
+  if (props_.testPattern() != TestPattern::MetricGrid)
   {
     overlay_->clearGrid();
   }
-  context_->queueRender();
+  applyProjection();  // the background: black under the crosshairs
+}
+
+bool ProjectorCameraDisplay::updateCrosshairs()
+{
+  const bool wanted = props_.testPattern() == TestPattern::Crosshairs && hasLens();
+  std::string problem;
+  if (wanted && crosshairs_->update(lens().width(), lens().height(), props_.crosshair_rows->getInt(),
+                                    props_.crosshair_cols->getInt(), problem))
+  {
+    markChanged();
+  }
+  warnIf("Test pattern", problem.empty() ? QString() : "No crosshairs: " + QString::fromStdString(problem));
+  return wanted;
 }
 
 void ProjectorCameraDisplay::updateImageOutput()
@@ -455,7 +448,7 @@ void ProjectorCameraDisplay::updateFootprint()
     return;
   }
   const FloorOverlayResult lit = overlay_->update(lens(), pose_, own_changes_, props_.footprint->getBool(),
-                                                  props_.test_pattern->getBool());
+                                                  props_.testPattern() == TestPattern::MetricGrid);
   updateFootprintVisible();
   if (!lit.recomputed)
   {
@@ -494,17 +487,10 @@ bool ProjectorCameraDisplay::prepareFrame()
     transform_state_ = -1;
   }
   updateFootprint();
+  crosshairs_shown_ = updateCrosshairs();
   if (output_->fitViewport(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0))
   {
-    const QString note = hasLens() ? output_->scalingNote(lens().width(), lens().height()) : QString();
-    if (note.isEmpty())
-    {
-      deleteStatus("Scaling");
-    }
-    else
-    {
-      setStatus(rviz::StatusProperty::Warn, "Scaling", note);
-    }
+    warnIf("Scaling", hasLens() ? output_->scalingNote(lens().width(), lens().height()) : QString());
   }
   return true;
 }
@@ -518,7 +504,13 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   }
   // The frustum never shows in the projector's own view.
   overlay_->setFootprintVisibilityFlags(~vis_bit_);
-  output_->setVisibilityMask(hasLens() && pose_ok_ ? vis_bit_ : 0u);
+  // The crosshairs' camera sees only them (nothing else is in its scene), with or without a pose.
+  Ogre::Camera* camera = crosshairs_shown_ ? crosshairs_->camera() : view_->camera();
+  if (Ogre::Viewport* viewport = output_->viewport(); viewport && viewport->getCamera() != camera)
+  {
+    viewport->setCamera(camera);
+  }
+  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : hasLens() && pose_ok_ ? vis_bit_ : 0u);
 }
 
 void ProjectorCameraDisplay::onFrameTimer()
@@ -552,7 +544,7 @@ void ProjectorCameraDisplay::renderNow()
   state.changes = ProjectionChangeCounter::value() + own_changes_;
   state.visibility = gate_->visibilitySignature();
   state.image = output_->imageRect();
-  state.drawable = hasLens() && pose_ok_;
+  state.drawable = hasLens() && (pose_ok_ || crosshairs_shown_);
   if (output_->takeRepaintRequest())
   {
     gate_->invalidate();  // exposed again: the window's content must be drawn anew
@@ -580,6 +572,18 @@ void ProjectorCameraDisplay::setStatus(rviz::StatusProperty::Level level, const 
   }
   status_cache_[name] = {level, text};
   Display::setStatus(level, name, text);
+}
+
+void ProjectorCameraDisplay::warnIf(const QString& name, const QString& warning)
+{
+  if (warning.isEmpty())
+  {
+    deleteStatus(name);
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Warn, name, warning);
+  }
 }
 
 void ProjectorCameraDisplay::deleteStatus(const QString& name)

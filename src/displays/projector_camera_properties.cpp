@@ -12,6 +12,7 @@
 #include <rviz/properties/string_property.h>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 
@@ -65,11 +66,28 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
       "Footprint in main view", true,
       "Draw the projector's frustum and the area it lights on the floor (z = 0) in rviz's main view.", display,
       SLOT(onFootprintPropertyChanged()), display);
-  test_pattern = new rviz::BoolProperty(
-      "Test pattern", false,
-      "Project a metric grid on the floor: 10 cm cells, bold lines every metre, a cross at the fixed "
-      "frame's origin. Check the calibration with a tape measure.",
+  test_pattern = new rviz::EnumProperty(
+      "Test pattern", kTestPatternOff,
+      "Off: the scene. Metric grid: a grid on the floor (10 cm cells, bold lines every metre, a cross "
+      "at the fixed frame's origin) to check the calibration with a tape measure. Crosshairs: numbered "
+      "crosshairs at fixed projector pixels, white on black, independent of the mount, tf and the "
+      "scene, to calibrate the mount (calibrate_projector --pattern lists the same pixels).",
       display, SLOT(updateTestPattern()), display);
+  test_pattern->addOption(kTestPatternOff, static_cast<int>(TestPattern::Off));
+  test_pattern->addOption(kTestPatternMetricGrid, static_cast<int>(TestPattern::MetricGrid));
+  test_pattern->addOption(kTestPatternCrosshairs, static_cast<int>(TestPattern::Crosshairs));
+  crosshair_rows = new rviz::IntProperty("Rows", CrosshairPatternSize::kDefaultRows,
+                                         "Rows of crosshairs, spread over the central 80% of the image's height.",
+                                         test_pattern, SLOT(updateTestPattern()), display);
+  crosshair_cols = new rviz::IntProperty("Columns", CrosshairPatternSize::kDefaultCols,
+                                         "Columns of crosshairs, spread over the central 80% of the image's width.",
+                                         test_pattern, SLOT(updateTestPattern()), display);
+  for (rviz::IntProperty* p : {crosshair_rows, crosshair_cols})
+  {
+    p->setMin(1);
+    p->setMax(CrosshairPatternSize::kMaxRowsCols);
+  }
+  showTestPatternOptions();
   image_output = new rviz::BoolProperty(
       "Image output", false,
       "Also publish the rendered view as sensor_msgs/Image (+ CameraInfo) for remote monitoring or recording.",
@@ -84,9 +102,44 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
   image_rate->setMax(120.0f);
 }
 
+TestPattern ProjectorCameraProperties::testPattern() const
+{
+  const QString value = test_pattern->getValue().toString();
+  if (value == kTestPatternMetricGrid)
+  {
+    return TestPattern::MetricGrid;
+  }
+  return value == kTestPatternCrosshairs ? TestPattern::Crosshairs : TestPattern::Off;
+}
+
+void ProjectorCameraProperties::showTestPatternOptions()
+{
+  const bool crosshairs = testPattern() == TestPattern::Crosshairs;
+  crosshair_rows->setHidden(!crosshairs);
+  crosshair_cols->setHidden(!crosshairs);
+}
+
 QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
 {
   ConfigCheck check;
+  // Test pattern was a BoolProperty until issue 12: `true` is today's Metric grid, `false` Off.
+  rviz::Config pattern = config.mapGetChild(test_pattern->getName());
+  if (pattern.getType() == rviz::Config::Map)
+  {
+    pattern = pattern.mapGetChild("Value");
+  }
+  const QString legacy = test_pattern->getValue().toString().trimmed().toLower();
+  if (legacy == "true" || legacy == "false")
+  {
+    test_pattern->setString(legacy == "true" ? kTestPatternMetricGrid : kTestPatternOff);
+  }
+  else
+  {
+    check.choice(pattern, test_pattern, {kTestPatternOff, kTestPatternMetricGrid, kTestPatternCrosshairs},
+                 kTestPatternOff);
+  }
+  check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_rows->getName()), crosshair_rows);
+  check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_cols->getName()), crosshair_cols);
   for (rviz::Property* p : {static_cast<rviz::Property*>(near_clip), static_cast<rviz::Property*>(far_clip),
                             static_cast<rviz::Property*>(frame_rate)})
   {

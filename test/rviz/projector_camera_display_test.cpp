@@ -297,7 +297,7 @@ TEST_F(ProjectorSceneTest, FootprintStatusGivesTheLitArea)
 
 TEST_F(ProjectorSceneTest, TestPatternDrawsAMetricGrid)
 {
-  projector_->subProp("Test pattern")->setValue(true);
+  projector_->subProp("Test pattern")->setValue("Metric grid");
   const QImage frame =
       imagePart(grabWhen([&](const QImage& image) { return countColour(image, qRgb(255, 255, 255)) > 2000; }));
   // Bold metre line x = 1 m across the floor: white at its projection.
@@ -307,7 +307,7 @@ TEST_F(ProjectorSceneTest, TestPatternDrawsAMetricGrid)
                                               qRgb(255, 255, 255), 30));
   EXPECT_EQ(frame.pixel(int(std::lround(off_line.x)), int(std::lround(off_line.y))), kBlack);
   EXPECT_GT(countColour(frame, qRgb(255, 255, 255)), 2000);
-  projector_->subProp("Test pattern")->setValue(false);
+  projector_->subProp("Test pattern")->setValue("Off");
   EXPECT_EQ(countColour(imagePart(grabWhen([&](const QImage& image) {
                           return countColour(image, qRgb(255, 255, 255)) == 0;
                         })),

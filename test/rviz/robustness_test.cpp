@@ -573,7 +573,7 @@ TEST_F(CameraRobustness, ProjectorABillionMetresFromTheOriginWithTheTestPattern)
 {
   // tf puts the projector 1e9 m away (a broken localisation): the footprint and the test pattern
   // grid (FloorGrid around the projector) are computed there without trouble.
-  projector_->subProp("Test pattern")->setValue(true);
+  projector_->subProp("Test pattern")->setValue("Metric grid");
   static_tf_->sendTransform(rviz_projector_test::projectorMount("map", kOptical, 1e9, -1e9, 1.2, 0.9));
   ASSERT_TRUE(waitFor([&] {
     projector_->renderNow();
@@ -592,7 +592,7 @@ TEST_F(CameraRobustness, ProjectorABillionMetresFromTheOriginWithTheTestPattern)
 // What must hold meanwhile: no crash, statuses, rviz renders.
 TEST_F(CameraRobustness, ProjectorFarBeyondLongRangeWithTheTestPattern)
 {
-  projector_->subProp("Test pattern")->setValue(true);
+  projector_->subProp("Test pattern")->setValue("Metric grid");
   static_tf_->sendTransform(rviz_projector_test::projectorMount("map", kOptical, 1e20, 0.0, 1.2, 0.9));
   ASSERT_TRUE(waitFor([&] {
     projector_->renderNow();

@@ -7,6 +7,7 @@
 //   ProjectionGate             whether a frame is needed; Visibility ticks by display identity
 //   ProjectorImagePublisher    optional Image + matching CameraInfo
 //   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
+//   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
 //   lookupProjectorPose        the projector's pose from tf
 //   FramePacer (core)          frame deadlines at the Frame rate limit / screen refresh
 // See README "Architecture" for how one frame flows.
@@ -44,6 +45,7 @@ class DisplayGroupVisibilityProperty;
 namespace rviz_projector
 {
 class ProjectionGate;
+class ProjectorCrosshairs;
 class ProjectorFloorOverlay;
 class ProjectorImagePublisher;
 class ProjectorOutput;
@@ -120,10 +122,14 @@ private:
   void showLensStatuses();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
   void checkMainViewCost();
+  /// The "Visibility" error when no visibility bit was left for this display.
+  void showVisibilityStatus();
   void showOutputResult(const OutputResult& result);
   /// Moves the camera to the projector's latest tf pose; false (with a status) when unavailable.
   bool updateCameraPose();
   void updateFootprint();
+  /// Follows the lens and Rows/Columns; true while the projector shows the crosshairs.
+  bool updateCrosshairs();
   /// Follows tf, the lens and the window; false when there is no window to draw into.
   bool prepareFrame();
   void updateFootprintVisible();
@@ -131,6 +137,8 @@ private:
   void markChanged() { ++own_changes_; }
   std::string projectorFrame() const;
   void setTransformStatus(int state, const QString& text);
+  /// A Warn status `name` with this text; deleted when the text is empty.
+  void warnIf(const QString& name, const QString& warning);
 
   ProjectorCameraProperties props_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
@@ -154,5 +162,7 @@ private:
   std::uint64_t own_changes_ = 0;
   std::map<QString, std::pair<int, QString>> status_cache_;
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
+  std::unique_ptr<ProjectorCrosshairs> crosshairs_;
+  bool crosshairs_shown_ = false;
 };
 }  // namespace rviz_projector

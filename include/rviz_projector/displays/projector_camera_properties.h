@@ -19,12 +19,27 @@ class StringProperty;
 
 namespace rviz_projector
 {
+/// The Test pattern property's choices (names as the Displays panel shows them).
+enum class TestPattern
+{
+  Off = 0,
+  MetricGrid = 1,
+  Crosshairs = 2
+};
+constexpr const char* kTestPatternOff = "Off";
+constexpr const char* kTestPatternMetricGrid = "Metric grid";
+constexpr const char* kTestPatternCrosshairs = "Crosshairs";
+
 struct ProjectorCameraProperties
 {
   /// Creates the properties under `display` (a ProjectorCameraDisplay: its slots are connected).
   explicit ProjectorCameraProperties(rviz::Display* display);
   /// After loading `config`: the values that were unusable and replaced (empty when none).
+  /// Also turns the Test pattern of configs saved before issue 12 (`true`/`false`) into a choice.
   QString checkLoaded(const rviz::Config& config) const;
+  TestPattern testPattern() const;
+  /// Shows Rows and Columns only for Crosshairs.
+  void showTestPatternOptions();
 
   rviz::RosTopicProperty* topic;
   rviz::StringProperty* frame;
@@ -36,7 +51,9 @@ struct ProjectorCameraProperties
   rviz::IntProperty* frame_rate;
   rviz::BoolProperty* anti_aliasing;
   rviz::BoolProperty* footprint;
-  rviz::BoolProperty* test_pattern;
+  rviz::EnumProperty* test_pattern;
+  rviz::IntProperty* crosshair_rows;     ///< child of test_pattern, Crosshairs only
+  rviz::IntProperty* crosshair_cols;     ///< child of test_pattern, Crosshairs only
   rviz::BoolProperty* image_output;
   rviz::StringProperty* image_topic;
   rviz::FloatProperty* image_rate;
