@@ -12,7 +12,7 @@ set(${PROJECT_NAME}_NODES_INCLUDE_DIRS ${YAML_CPP_INCLUDE_DIR} ${roslib_INCLUDE_
 set(${PROJECT_NAME}_NODES_LIBRARIES ${YAML_CPP_LIBRARIES} ${roslib_LIBRARIES})
 
 # Shared by the nodes and their tests (compiled into each; not a library of the package).
-set(${PROJECT_NAME}_CALIBRATION_SOURCES src/nodes/calibration_file.cpp)
+set(${PROJECT_NAME}_CALIBRATION_SOURCES src/nodes/calibration_file.cpp src/nodes/calibration_file_yaml.cpp)
 set(${PROJECT_NAME}_PATH_MARKERS_SOURCES src/nodes/path_markers.cpp)
 set(${PROJECT_NAME}_MOUNT_FILE_SOURCES src/nodes/mount_file.cpp)
 

@@ -16,6 +16,8 @@
 #include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
+#include "rviz_projector/nodes/calibration_file_yaml.h"
+
 #include "rviz_projector/core/pinhole_model.h"
 
 namespace rviz_projector
@@ -27,24 +29,6 @@ const char* const kTemplateHint = " (rviz_projector's config/projector_template.
 std::string quoted(const std::string& field)
 {
   return "'" + field + "'";
-}
-
-/// What a YAML node holds, for error messages: its text, or the kind of node it is.
-std::string describe(const YAML::Node& node)
-{
-  switch (node.Type())
-  {
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Null:
-      return "nothing";
-    default:
-      return "an undefined value";
-  }
 }
 
 /// Reads a whole number; false when the node is not one.
@@ -75,7 +59,7 @@ std::string checkImageSize(const YAML::Node& doc, const std::string& field)
   long long value = 0;
   if (!wholeNumber(node, value))
   {
-    return "field " + quoted(field) + " must be a whole number of pixels (got " + describe(node) + ")";
+    return "field " + quoted(field) + " must be a whole number of pixels (got " + describeYamlNode(node) + ")";
   }
   if (value <= 0)
   {
@@ -102,7 +86,7 @@ std::string checkMatrix(const YAML::Node& doc, const std::string& field, int row
   }
   if (!node.IsMap())
   {
-    return "field " + quoted(field) + " must be a map with rows, cols and data (got " + describe(node) + ")";
+    return "field " + quoted(field) + " must be a map with rows, cols and data (got " + describeYamlNode(node) + ")";
   }
   long long size[2] = {0, 0};
   const char* const keys[2] = {"rows", "cols"};
@@ -115,7 +99,7 @@ std::string checkMatrix(const YAML::Node& doc, const std::string& field, int row
     }
     if (!wholeNumber(value, size[i]) || size[i] < 0)
     {
-      return "field " + quoted(field) + ": '" + keys[i] + "' must be a whole number >= 0 (got " + describe(value) +
+      return "field " + quoted(field) + ": '" + keys[i] + "' must be a whole number >= 0 (got " + describeYamlNode(value) +
              ")";
     }
   }
@@ -133,7 +117,7 @@ std::string checkMatrix(const YAML::Node& doc, const std::string& field, int row
   }
   if (!data.IsSequence())
   {
-    return "field " + quoted(field) + ": 'data' must be a list of numbers (got " + describe(data) + ")";
+    return "field " + quoted(field) + ": 'data' must be a list of numbers (got " + describeYamlNode(data) + ")";
   }
   // rows x cols can exceed long long (both up to 2^63 - 1): compare without multiplying when it would.
   const bool fits = size[1] == 0 || size[0] <= std::numeric_limits<long long>::max() / size[1];
@@ -167,12 +151,12 @@ std::string checkMatrix(const YAML::Node& doc, const std::string& field, int row
     if (!number)
     {
       return "field " + quoted(field) + ": data[" + std::to_string(i) + "] is not a number (got " +
-             describe(data[i]) + ")";
+             describeYamlNode(data[i]) + ")";
     }
     if (!std::isfinite(value))
     {
       return "field " + quoted(field) + ": data[" + std::to_string(i) + "] is not finite (got " +
-             describe(data[i]) + ")";
+             describeYamlNode(data[i]) + ")";
     }
   }
   return "";
@@ -183,7 +167,7 @@ std::string checkText(const YAML::Node& doc, const std::string& field)
   const YAML::Node node = doc[field];
   if (node && !node.IsScalar())
   {
-    return "field " + quoted(field) + " must be a text (got " + describe(node) + ")";
+    return "field " + quoted(field) + " must be a text (got " + describeYamlNode(node) + ")";
   }
   return "";
 }
@@ -192,19 +176,10 @@ std::string checkText(const YAML::Node& doc, const std::string& field)
 std::string checkYaml(const std::string& path, std::vector<std::string>& warnings)
 {
   YAML::Node doc;
-  try
+  const std::string yaml_error = loadYamlFile(path, doc);
+  if (!yaml_error.empty())
   {
-    doc = YAML::LoadFile(path);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    std::ostringstream error;
-    error << "not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": " << e.msg;
-    return error.str();
-  }
-  catch (const YAML::Exception& e)
-  {
-    return std::string("cannot be read as YAML: ") + e.what();
+    return yaml_error;
   }
   if (doc.IsNull())
   {
@@ -213,7 +188,7 @@ std::string checkYaml(const std::string& path, std::vector<std::string>& warning
   if (!doc.IsMap())
   {
     return "expected a map of calibration fields (image_width, image_height, camera_matrix, ...), got " +
-           describe(doc);
+           describeYamlNode(doc);
   }
   const YAML::Node& root = doc;
   for (const char* field : {"image_width", "image_height"})

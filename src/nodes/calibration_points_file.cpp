@@ -11,44 +11,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "rviz_projector/nodes/calibration_file_yaml.h"
+
 namespace rviz_projector
 {
 namespace
 {
-std::string describe(const YAML::Node& node)
-{
-  switch (node.Type())
-  {
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Null:
-      return "nothing";
-    default:
-      return "an undefined value";
-  }
-}
-
-bool asDouble(const YAML::Node& node, double& value)
-{
-  if (!node.IsScalar())
-  {
-    return false;
-  }
-  try
-  {
-    value = node.as<double>();
-    return true;
-  }
-  catch (const YAML::Exception&)
-  {
-    return false;
-  }
-}
-
 /// "3" from a list of ids: "1, 4, 7".
 std::string idList(const std::vector<int>& ids)
 {
@@ -79,7 +47,7 @@ public:
     if (!entry_.IsMap())
     {
       return where() + " must be a map like {id: 1, u: 192.0, v: 120.0, x: 2.013, y: 0.871} (got " +
-             describe(entry_) + ")";
+             describeYamlNode(entry_) + ")";
     }
     std::string error = readId();
     if (!error.empty())
@@ -163,10 +131,10 @@ private:
       return where() + " has no 'id' (the crosshair's number)";
     }
     double value = 0.0;
-    if (!asDouble(node, value) || !std::isfinite(value) || value != std::floor(value) || value < 0.0 ||
+    if (!yamlNumber(node, value) || !std::isfinite(value) || value != std::floor(value) || value < 0.0 ||
         value > std::numeric_limits<int>::max())
     {
-      return where() + ": 'id' must be a whole number >= 0, the crosshair's number (got " + describe(node) + ")";
+      return where() + ": 'id' must be a whole number >= 0, the crosshair's number (got " + describeYamlNode(node) + ")";
     }
     id_ = static_cast<int>(value);
     has_id_ = true;
@@ -175,13 +143,13 @@ private:
 
   std::string number(const YAML::Node& node, const std::string& field, double& value) const
   {
-    if (!asDouble(node, value))
+    if (!yamlNumber(node, value))
     {
-      return where() + ": '" + field + "' is not a number (got " + describe(node) + ")";
+      return where() + ": '" + field + "' is not a number (got " + describeYamlNode(node) + ")";
     }
     if (!std::isfinite(value))
     {
-      return where() + ": '" + field + "' is not finite (got " + describe(node) + ")";
+      return where() + ": '" + field + "' is not finite (got " + describeYamlNode(node) + ")";
     }
     return "";
   }
@@ -218,7 +186,7 @@ std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pa
   }
   if (!doc.IsMap())
   {
-    return "expected a map with 'frame' and 'points', got " + describe(doc);
+    return "expected a map with 'frame' and 'points', got " + describeYamlNode(doc);
   }
   for (const auto& key_value : doc)
   {
@@ -235,7 +203,7 @@ std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pa
   }
   if (!frame.IsScalar() || frame.Scalar().empty())
   {
-    return "field 'frame' must be a frame name, e.g. base_link (got " + describe(frame) + ")";
+    return "field 'frame' must be a frame name, e.g. base_link (got " + describeYamlNode(frame) + ")";
   }
   out.frame = frame.Scalar();
   const YAML::Node points = doc["points"];
@@ -245,7 +213,7 @@ std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pa
   }
   if (!points.IsSequence())
   {
-    return "field 'points' must be a list of {id, u, v, x, y} (got " + describe(points) + ")";
+    return "field 'points' must be a list of {id, u, v, x, y} (got " + describeYamlNode(points) + ")";
   }
   std::map<int, std::size_t> entry_of_id;
   std::vector<int> not_measured;
@@ -294,20 +262,10 @@ std::string readCalibrationPoints(const std::string& path, const std::vector<Cro
     return path + ": cannot be read (no such file, or no permission)";
   }
   YAML::Node doc;
-  try
+  const std::string yaml_error = loadYamlFile(path, doc);
+  if (!yaml_error.empty())
   {
-    doc = YAML::LoadFile(path);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    std::ostringstream error;
-    error << path << ": not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": "
-          << e.msg;
-    return error.str();
-  }
-  catch (const YAML::Exception& e)
-  {
-    return path + ": cannot be read as YAML: " + e.what();
+    return path + ": " + yaml_error;
   }
   const std::string error = readDocument(doc, pattern, pattern_name, out);
   if (!error.empty())

@@ -117,9 +117,8 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   {
     return reportError(err, points_name + ": " + problem);
   }
-  MountSolverOptions solver_options;
+  MountSolverOptions solver_options = MountSolverOptions::forTapeError(options.tape_error);
   solver_options.fit_intrinsics = options.fit_intrinsics;
-  solver_options.tape_error = options.tape_error;
   const MountSolution solution = solveMount(input.lens, points.points, solver_options);
   if (!solution.ok)
   {

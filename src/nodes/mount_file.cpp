@@ -8,27 +8,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "rviz_projector/nodes/calibration_file_yaml.h"
+
 namespace rviz_projector
 {
 namespace
 {
-std::string describe(const YAML::Node& node)
-{
-  switch (node.Type())
-  {
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Null:
-      return "nothing";
-    default:
-      return "an undefined value";
-  }
-}
-
 std::string readNumber(const YAML::Node& doc, const char* field, const char* unit, double& value)
 {
   const YAML::Node node = doc[field];
@@ -36,25 +21,13 @@ std::string readNumber(const YAML::Node& doc, const char* field, const char* uni
   {
     return std::string("missing field '") + field + "' (" + unit + ")";
   }
-  bool number = node.IsScalar();
-  if (number)
+  if (!yamlNumber(node, value))
   {
-    try
-    {
-      value = node.as<double>();
-    }
-    catch (const YAML::Exception&)
-    {
-      number = false;
-    }
-  }
-  if (!number)
-  {
-    return std::string("field '") + field + "' is not a number (got " + describe(node) + ")";
+    return std::string("field '") + field + "' is not a number (got " + describeYamlNode(node) + ")";
   }
   if (!std::isfinite(value))
   {
-    return std::string("field '") + field + "' is not finite (got " + describe(node) + ")";
+    return std::string("field '") + field + "' is not finite (got " + describeYamlNode(node) + ")";
   }
   return "";
 }
@@ -67,7 +40,7 @@ std::string readDocument(const YAML::Node& doc, MountFile& out)
   }
   if (!doc.IsMap())
   {
-    return "expected a map with parent_frame, x, y, z, roll, pitch, yaw, got " + describe(doc);
+    return "expected a map with parent_frame, x, y, z, roll, pitch, yaw, got " + describeYamlNode(doc);
   }
   const YAML::Node frame = doc["parent_frame"];
   if (!frame)
@@ -76,7 +49,7 @@ std::string readDocument(const YAML::Node& doc, MountFile& out)
   }
   if (!frame.IsScalar() || frame.Scalar().empty())
   {
-    return "field 'parent_frame' must be a frame name, e.g. base_link (got " + describe(frame) + ")";
+    return "field 'parent_frame' must be a frame name, e.g. base_link (got " + describeYamlNode(frame) + ")";
   }
   out.parent_frame = frame.Scalar();
   struct Field
@@ -140,20 +113,10 @@ std::string readMountFile(const std::string& path, MountFile& out)
     return path + ": cannot be read (no such file, or no permission)";
   }
   YAML::Node doc;
-  try
+  const std::string yaml_error = loadYamlFile(path, doc);
+  if (!yaml_error.empty())
   {
-    doc = YAML::LoadFile(path);
-  }
-  catch (const YAML::ParserException& e)
-  {
-    std::ostringstream error;
-    error << path << ": not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": "
-          << e.msg;
-    return error.str();
-  }
-  catch (const YAML::Exception& e)
-  {
-    return path + ": cannot be read as YAML: " + e.what();
+    return path + ": " + yaml_error;
   }
   const std::string error = readDocument(doc, out);
   if (!error.empty())

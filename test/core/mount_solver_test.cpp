@@ -284,3 +284,12 @@ TEST(MountSolver, FewPointsThatDisagreeAreRefused)
   EXPECT_FALSE(s.ok);
   EXPECT_TRUE(contains(s.error, "do not agree") || contains(s.error, "in front of")) << s.error;
 }
+
+// The CLI's --tape-error sets the outlier threshold: 10 tape errors, never under 3 cm (by hand).
+TEST(MountSolverOptions, OutlierThresholdFollowsTheTapeError)
+{
+  EXPECT_DOUBLE_EQ(0.03, rviz_projector::MountSolverOptions::forTapeError(0.003).outlier_distance);
+  EXPECT_DOUBLE_EQ(0.03, rviz_projector::MountSolverOptions::forTapeError(0.001).outlier_distance);
+  EXPECT_DOUBLE_EQ(0.1, rviz_projector::MountSolverOptions::forTapeError(0.01).outlier_distance);
+  EXPECT_DOUBLE_EQ(0.01, rviz_projector::MountSolverOptions::forTapeError(0.01).tape_error);
+}

@@ -43,6 +43,16 @@ struct MountSolverOptions
   double outlier_distance = 0.03;
   /// Also fit fx, fy, cx, cy (needs points off the floor plane).
   bool fit_intrinsics = false;
+
+  /// Options for points measured to `tape_error` (metres, 1 sigma): a point 10 tape errors, and at
+  /// least 3 cm, from the solution is an outlier (3 mm -> 3 cm, 1 cm -> 10 cm).
+  static MountSolverOptions forTapeError(double tape_error)
+  {
+    MountSolverOptions options;
+    options.tape_error = tape_error;
+    options.outlier_distance = tape_error * 10.0 > 0.03 ? tape_error * 10.0 : 0.03;
+    return options;
+  }
 };
 
 struct ExpectedError

@@ -1,0 +1,59 @@
+#include "rviz_projector/nodes/calibration_file_yaml.h"
+
+#include <sstream>
+
+namespace rviz_projector
+{
+std::string describeYamlNode(const YAML::Node& node)
+{
+  switch (node.Type())
+  {
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Null:
+      return "nothing";
+    default:
+      return "an undefined value";
+  }
+}
+
+std::string loadYamlFile(const std::string& path, YAML::Node& doc)
+{
+  try
+  {
+    doc = YAML::LoadFile(path);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    std::ostringstream error;
+    error << "not valid YAML: line " << e.mark.line + 1 << ", column " << e.mark.column + 1 << ": " << e.msg;
+    return error.str();
+  }
+  catch (const YAML::Exception& e)
+  {
+    return std::string("cannot be read as YAML: ") + e.what();
+  }
+  return "";
+}
+
+bool yamlNumber(const YAML::Node& node, double& value)
+{
+  if (!node.IsScalar())
+  {
+    return false;
+  }
+  try
+  {
+    value = node.as<double>();
+    return true;
+  }
+  catch (const YAML::Exception&)
+  {
+    return false;
+  }
+}
+}  // namespace rviz_projector
