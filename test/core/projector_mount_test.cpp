@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "mount_test_oracle.h"
 #include "rviz_projector/core/projector_mount.h"
 
 using rviz_projector::mountOfOpticalPose;
@@ -19,19 +20,9 @@ using rviz_projector::Vec3;
 
 namespace
 {
-using Mat = std::array<std::array<double, 3>, 3>;
-
-constexpr double kDeg = M_PI / 180.0;
-
-Mat mul(const Mat& a, const Mat& b)
-{
-  Mat c{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        c[i][j] += a[i][k] * b[k][j];
-  return c;
-}
+using mount_oracle::kDeg;
+using mount_oracle::Mat;
+using mount_oracle::mul;
 
 /// Oracle: the textbook elementary rotations multiplied out, then the optical axes (x right, y down,
 /// z forward) as body axes: optical x = -body y, optical y = -body z, optical z = body x.
