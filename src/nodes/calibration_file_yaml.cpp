@@ -1,5 +1,6 @@
 #include "rviz_projector/nodes/calibration_file_yaml.h"
 
+#include <cmath>
 #include <sstream>
 
 namespace rviz_projector
@@ -55,5 +56,34 @@ bool yamlNumber(const YAML::Node& node, double& value)
   {
     return false;
   }
+}
+
+std::string yamlFiniteNumberProblem(const YAML::Node& node, double& value)
+{
+  if (!yamlNumber(node, value))
+  {
+    return "is not a number (got " + describeYamlNode(node) + ")";
+  }
+  if (!std::isfinite(value))
+  {
+    return "is not finite (got " + describeYamlNode(node) + ")";
+  }
+  return "";
+}
+
+std::string readYamlFrameName(const YAML::Node& doc, const std::string& field, const std::string& what,
+                              std::string& out)
+{
+  const YAML::Node frame = doc[field];
+  if (!frame)
+  {
+    return "missing field '" + field + "' (" + what + ")";
+  }
+  if (!frame.IsScalar() || frame.Scalar().empty())
+  {
+    return "field '" + field + "' must be a frame name, e.g. base_link (got " + describeYamlNode(frame) + ")";
+  }
+  out = frame.Scalar();
+  return "";
 }
 }  // namespace rviz_projector

@@ -143,15 +143,8 @@ private:
 
   std::string number(const YAML::Node& node, const std::string& field, double& value) const
   {
-    if (!yamlNumber(node, value))
-    {
-      return where() + ": '" + field + "' is not a number (got " + describeYamlNode(node) + ")";
-    }
-    if (!std::isfinite(value))
-    {
-      return where() + ": '" + field + "' is not finite (got " + describeYamlNode(node) + ")";
-    }
-    return "";
+    const std::string problem = yamlFiniteNumberProblem(node, value);
+    return problem.empty() ? problem : where() + ": '" + field + "' " + problem;
   }
 
   std::string metres(const YAML::Node& node, const std::string& field, double& value) const
@@ -196,16 +189,12 @@ std::string readDocument(const YAML::Node& doc, const std::vector<Crosshair>& pa
       return "unknown field '" + key + "' (expected 'frame' and 'points')";
     }
   }
-  const YAML::Node frame = doc["frame"];
-  if (!frame)
+  const std::string frame_error =
+      readYamlFrameName(doc, "frame", "the frame the points are measured in, e.g. base_link", out.frame);
+  if (!frame_error.empty())
   {
-    return "missing field 'frame' (the frame the points are measured in, e.g. base_link)";
+    return frame_error;
   }
-  if (!frame.IsScalar() || frame.Scalar().empty())
-  {
-    return "field 'frame' must be a frame name, e.g. base_link (got " + describeYamlNode(frame) + ")";
-  }
-  out.frame = frame.Scalar();
   const YAML::Node points = doc["points"];
   if (!points)
   {

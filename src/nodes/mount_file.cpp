@@ -2,7 +2,6 @@
 
 #include "rviz_projector/nodes/number_format.h"
 
-#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -21,15 +20,8 @@ std::string readNumber(const YAML::Node& doc, const char* field, const char* uni
   {
     return std::string("missing field '") + field + "' (" + unit + ")";
   }
-  if (!yamlNumber(node, value))
-  {
-    return std::string("field '") + field + "' is not a number (got " + describeYamlNode(node) + ")";
-  }
-  if (!std::isfinite(value))
-  {
-    return std::string("field '") + field + "' is not finite (got " + describeYamlNode(node) + ")";
-  }
-  return "";
+  const std::string problem = yamlFiniteNumberProblem(node, value);
+  return problem.empty() ? problem : std::string("field '") + field + "' " + problem;
 }
 
 std::string readDocument(const YAML::Node& doc, MountFile& out)
@@ -42,16 +34,12 @@ std::string readDocument(const YAML::Node& doc, MountFile& out)
   {
     return "expected a map with parent_frame, x, y, z, roll, pitch, yaw, got " + describeYamlNode(doc);
   }
-  const YAML::Node frame = doc["parent_frame"];
-  if (!frame)
+  const std::string frame_error = readYamlFrameName(
+      doc, "parent_frame", "the frame the projector is mounted on, e.g. base_link", out.parent_frame);
+  if (!frame_error.empty())
   {
-    return "missing field 'parent_frame' (the frame the projector is mounted on, e.g. base_link)";
+    return frame_error;
   }
-  if (!frame.IsScalar() || frame.Scalar().empty())
-  {
-    return "field 'parent_frame' must be a frame name, e.g. base_link (got " + describeYamlNode(frame) + ")";
-  }
-  out.parent_frame = frame.Scalar();
   struct Field
   {
     const char* name;

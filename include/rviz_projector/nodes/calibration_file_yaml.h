@@ -17,4 +17,13 @@ std::string loadYamlFile(const std::string& path, YAML::Node& doc);
 
 /// The node as a number (a scalar yaml-cpp converts to double; .nan/.inf included); false otherwise.
 bool yamlNumber(const YAML::Node& node, double& value);
+
+/// "" when the node is a finite number (stored in `value`), else "is not a number (got ...)" or
+/// "is not finite (got ...)": the caller prefixes the field.
+std::string yamlFiniteNumberProblem(const YAML::Node& node, double& value);
+
+/// Reads `doc[field]`, a frame name, into `out`: "" on success, else "missing field 'F' (<what>)"
+/// or "field 'F' must be a frame name, e.g. base_link (got ...)".
+std::string readYamlFrameName(const YAML::Node& doc, const std::string& field, const std::string& what,
+                              std::string& out);
 }  // namespace rviz_projector
