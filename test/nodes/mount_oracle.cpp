@@ -6,20 +6,22 @@
 
 #include <camera_calibration_parsers/parse.h>
 
+#include "../core/mount_test_oracle.h"
+
 namespace rviz_projector_test
 {
 TestPose opticalPoseByHand(const TestMount& m)
 {
-  const double cr = std::cos(m.roll), sr = std::sin(m.roll);
-  const double cp = std::cos(m.pitch), sp = std::sin(m.pitch);
-  const double cy = std::cos(m.yaw), sy = std::sin(m.yaw);
-  const cv::Matx33d rx(1, 0, 0, 0, cr, -sr, 0, sr, cr);
-  const cv::Matx33d ry(cp, 0, sp, 0, 1, 0, -sp, 0, cp);
-  const cv::Matx33d rz(cy, -sy, 0, sy, cy, 0, 0, 0, 1);
-  // Columns: the optical axes in the body frame (x right = -y body, y down = -z body, z = x body).
-  const cv::Matx33d body_optical(0, 0, 1, -1, 0, 0, 0, -1, 0);
+  // The rotation built by hand in the core tests' oracle (elementary rotations multiplied out).
+  const mount_oracle::Mat r = mount_oracle::parentROptical({m.x, m.y, m.z, m.roll, m.pitch, m.yaw});
   TestPose pose;
-  pose.rotation = rz * ry * rx * body_optical;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      pose.rotation(i, j) = r[i][j];
+    }
+  }
   pose.translation = cv::Vec3d(m.x, m.y, m.z);
   return pose;
 }
