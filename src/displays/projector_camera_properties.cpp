@@ -104,12 +104,8 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
 
 TestPattern ProjectorCameraProperties::testPattern() const
 {
-  const QString value = test_pattern->getValue().toString();
-  if (value == kTestPatternMetricGrid)
-  {
-    return TestPattern::MetricGrid;
-  }
-  return value == kTestPatternCrosshairs ? TestPattern::Crosshairs : TestPattern::Off;
+  // The options carry the enum's values (addOption above); an unknown text gives 0, Off.
+  return static_cast<TestPattern>(test_pattern->getOptionInt());
 }
 
 void ProjectorCameraProperties::showTestPatternOptions()
