@@ -404,6 +404,12 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     return failure("the solution puts the projector below the points' plane: check the signs of x, y and the ids");
   }
   s.mount = mountOfOpticalPose(s.parent_T_optical);
+  const ProjectorMount& m = s.mount;
+  if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.roll) ||
+      !std::isfinite(m.pitch) || !std::isfinite(m.yaw))
+  {
+    return failure("the solved mount is not finite");  // never printed as a solution, by any caller
+  }
   double sum_px = 0.0, sum_mm = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i)
   {

@@ -1,7 +1,6 @@
 #include "rviz_projector/nodes/calibration_run.h"
 
 #include <array>
-#include <cmath>
 #include <sstream>
 
 #include <camera_calibration_parsers/parse_yml.h>
@@ -124,13 +123,7 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   {
     return reportError(err, points_name + ": no solution: " + solution.error);
   }
-  const ProjectorMount& m = solution.mount;
-  if (!std::isfinite(m.x) || !std::isfinite(m.y) || !std::isfinite(m.z) || !std::isfinite(m.roll) ||
-      !std::isfinite(m.pitch) || !std::isfinite(m.yaw))
-  {
-    return reportError(err, points_name + ": no solution: the solver returned a mount that is not finite");
-  }
-
+  // solveMount never returns ok with a non-finite mount (checked there, for every caller).
   // Everything to write is composed first: a failure leaves no half-written set of files.
   std::string calibration_text;
   if (!options.output_calibration.empty())
