@@ -11,6 +11,8 @@
 #include <rviz/render_panel.h>
 #include <rviz/view_manager.h>
 
+#include "rviz_projector/displays/host_mode.h"
+
 namespace rviz_projector
 {
 bool isSoftwareRenderer(const std::string& gl_renderer)
@@ -41,6 +43,10 @@ std::string mainViewCostWarning(unsigned int fsaa, const std::string& gl_rendere
 
 std::string mainViewCostWarning(rviz::DisplayContext& context)
 {
+  if (hostMode())
+  {
+    return std::string();  // projector_host renders no main view
+  }
   // The main view's render window and the renderer are fixed for the life of rviz.
   rviz::ViewManager* views = context.getViewManager();
   rviz::RenderPanel* panel = views != nullptr ? views->getRenderPanel() : nullptr;

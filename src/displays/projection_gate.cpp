@@ -7,6 +7,9 @@
 #include <rviz/properties/display_group_visibility_property.h>
 #include <rviz/properties/display_visibility_property.h>
 
+#include "rviz_projector/displays/host_mode.h"
+#include "rviz_projector/displays/scene_signature.h"
+
 namespace rviz_projector
 {
 namespace
@@ -80,6 +83,32 @@ bool foreignShown(const rviz::Property* entries)
   return false;
 }
 
+/// Mixes the scene graphs of the shown displays not from this package (host mode, host_mode.h).
+void foreignScene(const rviz::Property* entries, std::uint64_t& hash)
+{
+  for (int i = 0; i < entries->numChildren(); ++i)
+  {
+    const rviz::DisplayVisibilityProperty* entry = asEntry(entries->childAt(i));
+    if (!entry || !entry->getValue().toBool())
+    {
+      continue;
+    }
+    const rviz::Display* display = VisibilityEntry::displayOf(*entry);
+    if (!display->isEnabled())
+    {
+      continue;
+    }
+    if (qobject_cast<const rviz::DisplayGroup*>(display))
+    {
+      foreignScene(entry, hash);
+    }
+    else if (!display->getClassId().startsWith("rviz_projector/"))
+    {
+      mixSceneSignature(display->getSceneNode(), hash);
+    }
+  }
+}
+
 rviz::Property* findTick(const rviz::Property* entries, const rviz::Display* display)
 {
   for (int i = 0; i < entries->numChildren(); ++i)
@@ -106,7 +135,7 @@ rviz::Property* findTick(const rviz::Property* entries, const rviz::Display* dis
 bool FrameState::operator==(const FrameState& o) const
 {
   return pose == o.pose && changes == o.changes && visibility == o.visibility && image == o.image &&
-         drawable == o.drawable;
+         drawable == o.drawable && foreign_scene == o.foreign_scene;
 }
 
 ProjectionGate::ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner) : group_(group), owner_(owner)
@@ -190,14 +219,34 @@ bool ProjectionGate::showsForeignDisplays() const
   return visibility_ && visibility_->getBool() && foreignShown(visibility_);
 }
 
-bool ProjectionGate::needsFrame(const FrameState& state)
+std::uint64_t ProjectionGate::foreignSceneSignature() const
 {
-  if (have_last_ && state == last_ && !showsForeignDisplays())
+  std::uint64_t hash = 1469598103934665603ull;
+  if (visibility_ && visibility_->getBool())
+  {
+    foreignScene(visibility_, hash);
+  }
+  return hash;
+}
+
+bool ProjectionGate::needsFrame(const FrameState& requested)
+{
+  FrameState state = requested;
+  bool every_tick = showsForeignDisplays();
+  if (every_tick && hostMode())
+  {
+    // projector_host: other packages' displays are seen through their scene graph and their render
+    // requests (counted in state.changes); a keep-alive frame catches content changed in place.
+    state.foreign_scene = foreignSceneSignature();
+    every_tick = !since_last_frame_.isValid() || since_last_frame_.elapsed() >= kHostKeepAliveSeconds * 1000.0;
+  }
+  if (have_last_ && state == last_ && !every_tick)
   {
     return false;
   }
   last_ = state;
   have_last_ = true;
+  since_last_frame_.start();
   return true;
 }
 }  // namespace rviz_projector

@@ -14,6 +14,7 @@
 #include <QWindow>
 
 #include "rviz_projector/core/screen_choice.h"
+#include "rviz_projector/displays/host_mode.h"
 #include "rviz_projector/displays/projector_output_window.h"
 
 namespace rviz_projector
@@ -251,7 +252,8 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
   // Never full screen over rviz by accident: when Automatic ends up on rviz's own screen, or only
   // one screen exists, the window opens windowed. A screen the user named explicitly is obeyed.
   const bool named = request.screen != kAutomaticScreen && !request.screen.empty() && problem.isEmpty();
-  const bool shares_rviz = qt_screens.size() < 2 || (choice.shares_rviz_screen && !named);
+  // projector_host has no rviz window to cover: full screen wherever the choice fell.
+  const bool shares_rviz = !hostMode() && (qt_screens.size() < 2 || (choice.shares_rviz_screen && !named));
   const bool full_screen = request.full_screen && !shares_rviz;
   if (!window_ || window_->isFullScreenOn() != full_screen || window_->fsaa() != request.fsaa)
   {

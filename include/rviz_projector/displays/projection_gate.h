@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 
+#include <QElapsedTimer>
 #include <QObject>
 
 #include "rviz_projector/core/letterbox.h"
@@ -32,6 +33,7 @@ struct FrameState
   std::uint64_t visibility = 0;  ///< ProjectionGate::visibilitySignature()
   PixelRect image;               ///< where the image is drawn in the window
   bool drawable = false;         ///< lens and pose available
+  std::uint64_t foreign_scene = 0;  ///< host mode: ProjectionGate::foreignSceneSignature() (set by the gate)
   bool operator==(const FrameState& o) const;
 };
 
@@ -46,15 +48,19 @@ public:
   /// The owner's Visibility property, once created; existing displays get their default ticks.
   void attach(rviz::DisplayGroupVisibilityProperty* visibility);
 
-  /// Whether `state` needs a new frame: it differs from the last frame rendered, or the view shows
-  /// displays that do not announce their changes (not from this package), or the view was
-  /// invalidated. When true, `state` is recorded as rendered.
+  /// Whether `state` needs a new frame: it differs from the last frame rendered, or the view was
+  /// invalidated, or the view shows displays that do not announce their changes (not from this
+  /// package). Those force a frame every tick in rviz; in projector_host (host_mode.h) only when
+  /// their scene graph changed, a display asked for a render, or the keep-alive period passed.
+  /// When true, `state` is recorded as rendered.
   bool needsFrame(const FrameState& state);
   /// The next frame renders whatever the state (a new window, a read-back).
   void invalidate() { have_last_ = false; }
 
   /// Hash of the displays shown in the projector view (identity, enabled, tick); no allocation.
   std::uint64_t visibilitySignature() const;
+  /// Hash of the scene graphs of the shown displays not from this package (scene_signature.h).
+  std::uint64_t foreignSceneSignature() const;
   /// Whether a display not from this package is shown in the projector view.
   bool showsForeignDisplays() const;
   /// The Visibility tick of `display` (nullptr when it has none).
@@ -75,5 +81,6 @@ private:
   std::map<const QObject*, bool> taken_out_;
   FrameState last_;
   bool have_last_ = false;
+  QElapsedTimer since_last_frame_;
 };
 }  // namespace rviz_projector

@@ -1,0 +1,71 @@
+// projector_host's one rviz: a VisualizationManager with the displays of a .rviz config, without
+// rviz's main window and without rendering a main view (its RenderPanel is never shown and its
+// render window is inactive). Loads the config at start and on reload; a config that fails
+// checkHostConfig() is refused and the running one stays.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <QObject>
+#include <QPointer>
+#include <QString>
+#endif
+
+namespace rviz
+{
+class Display;
+class RenderPanel;
+class VisualizationManager;
+}  // namespace rviz
+
+namespace rviz_projector
+{
+class HostCurtain;
+class ProjectorCameraDisplay;
+
+struct HostLoadResult
+{
+  bool ok = false;
+  std::string message;                ///< what was loaded, or why not
+  std::vector<std::string> warnings;  ///< displays skipped (plugin missing)
+};
+
+class HostSession : public QObject
+{
+  Q_OBJECT
+public:
+  explicit HostSession(const QString& config_path);
+  ~HostSession() override;
+
+  /// First load. Not ok: the host has nothing to show and exits (kHostExitBadConfig).
+  HostLoadResult start();
+  /// Re-reads the file; a broken file is refused (the last good configuration keeps running).
+  /// Qt thread only. The old displays are deleted: callers hold no Display pointer across it.
+  HostLoadResult reload();
+
+  const QString& configPath() const { return path_; }
+  rviz::VisualizationManager* manager() const { return manager_; }
+  /// Every ProjectorCamera of the running configuration (groups included).
+  std::vector<ProjectorCameraDisplay*> projectors() const;
+  /// Every display of the running configuration (groups included, groups themselves too).
+  std::vector<rviz::Display*> displays() const;
+  /// Number of loads that changed the running configuration (start included).
+  int generation() const { return generation_; }
+
+Q_SIGNALS:
+  /// The displays were replaced (start or a successful reload).
+  void loaded();
+
+private:
+  HostLoadResult load(bool first);
+
+  QString path_;
+  rviz::RenderPanel* panel_ = nullptr;
+  rviz::VisualizationManager* manager_ = nullptr;
+  std::unique_ptr<HostCurtain> curtain_;
+  int generation_ = 0;
+};
+}  // namespace rviz_projector

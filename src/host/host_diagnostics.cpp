@@ -1,0 +1,170 @@
+#include "rviz_projector/host/host_diagnostics.h"
+
+#include <algorithm>
+
+#include <QPointer>
+#include <rviz/display.h>
+#include <rviz/display_group.h>
+#include <rviz/visualization_manager.h>
+#include <rviz/properties/status_list.h>
+#include <rviz/properties/status_property.h>
+
+#include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/host/host_projector_status.h"
+#include "rviz_projector/host/host_session.h"
+
+namespace rviz_projector
+{
+namespace
+{
+/// How often the updater is given a chance to publish (it publishes at ~diagnostic_period, 1 s).
+constexpr int kPollMs = 100;
+
+unsigned char diagnosticLevel(int rviz_level)
+{
+  switch (rviz_level)
+  {
+    case rviz::StatusProperty::Ok:
+      return diagnostic_msgs::DiagnosticStatus::OK;
+    case rviz::StatusProperty::Warn:
+      return diagnostic_msgs::DiagnosticStatus::WARN;
+    default:
+      return diagnostic_msgs::DiagnosticStatus::ERROR;
+  }
+}
+
+std::string displayLabel(const rviz::Display& display)
+{
+  return display.getName().toStdString() + " (" + display.getClassId().toStdString() + ")";
+}
+}  // namespace
+
+std::vector<DisplayStatusLine> displayStatusLines(const rviz::Display& display)
+{
+  std::vector<DisplayStatusLine> lines;
+  for (int i = 0; i < display.numChildren(); ++i)
+  {
+    const auto* list = qobject_cast<const rviz::StatusList*>(display.childAt(i));
+    if (!list)
+    {
+      continue;
+    }
+    for (int j = 0; j < list->numChildren(); ++j)
+    {
+      const auto* item = qobject_cast<const rviz::StatusProperty*>(list->childAt(j));
+      if (item)
+      {
+        lines.push_back({item->getName().toStdString(), static_cast<int>(item->getLevel()),
+                         item->getValue().toString().toStdString()});
+      }
+    }
+  }
+  return lines;
+}
+
+HostDiagnostics::HostDiagnostics(HostSession& session) : session_(session)
+{
+  updater_.setHardwareID("projector_host");
+  connect(&session_, &HostSession::loaded, this, &HostDiagnostics::rebuild);
+  connect(&timer_, &QTimer::timeout, this, [this] { updater_.update(); });
+  timer_.start(kPollMs);
+  rebuild();
+}
+
+HostDiagnostics::~HostDiagnostics() = default;
+
+void HostDiagnostics::setLastLoad(const HostLoadResult& result)
+{
+  last_ok_ = result.ok;
+  last_message_ = result.message;
+  if (result.ok)
+  {
+    last_warnings_ = result.warnings;
+  }
+}
+
+void HostDiagnostics::rebuild()
+{
+  for (const std::string& name : task_names_)
+  {
+    updater_.removeByName(name);
+  }
+  task_names_.clear();
+  task_names_.push_back("projector_host: config");
+  updater_.add(task_names_.back(), this, &HostDiagnostics::configStatus);
+  task_names_.push_back("projector_host: displays");
+  updater_.add(task_names_.back(), this, &HostDiagnostics::displaysStatus);
+  for (ProjectorCameraDisplay* projector : session_.projectors())
+  {
+    QPointer<ProjectorCameraDisplay> watched(projector);
+    task_names_.push_back("projector_host: " + projector->getName().toStdString());
+    updater_.add(task_names_.back(), [watched](diagnostic_updater::DiagnosticStatusWrapper& status) {
+      if (!watched)
+      {
+        status.summary(diagnostic_msgs::DiagnosticStatus::STALE, "display was removed");
+        return;
+      }
+      fillProjectorStatus(*watched, displayStatusLines(*watched), status);
+    });
+  }
+}
+
+void HostDiagnostics::configStatus(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  unsigned char level = diagnostic_msgs::DiagnosticStatus::OK;
+  if (!last_ok_ || !last_warnings_.empty())
+  {
+    level = diagnostic_msgs::DiagnosticStatus::WARN;
+  }
+  status.summary(level, last_ok_ ? (last_warnings_.empty() ? "configuration running" :
+                                                             "configuration running, some displays skipped") :
+                                   "last reload refused: " + last_message_);
+  status.add("Config file", session_.configPath().toStdString());
+  status.add("Loads", session_.generation());
+  status.add("Last load", last_message_);
+  for (std::size_t i = 0; i < last_warnings_.size(); ++i)
+  {
+    status.add("Skipped " + std::to_string(i + 1), last_warnings_[i]);
+  }
+}
+
+void HostDiagnostics::displaysStatus(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  int worst = rviz::StatusProperty::Ok;
+  std::string worst_text = "all displays OK";
+  int count = 0;
+  for (rviz::Display* display : session_.displays())
+  {
+    if (qobject_cast<ProjectorCameraDisplay*>(display))
+    {
+      continue;  // in its own status
+    }
+    ++count;
+    const std::string label = displayLabel(*display);
+    status.add(label, display->isEnabled() ? "enabled" : "disabled");
+    for (const DisplayStatusLine& line : displayStatusLines(*display))
+    {
+      status.add(label + " / " + line.name, line.text);
+      if (display->isEnabled() && line.level > worst)
+      {
+        worst = line.level;
+        worst_text = label + ": " + line.name + ": " + line.text;
+      }
+    }
+  }
+  if (session_.manager())
+  {
+    for (const DisplayStatusLine& line : displayStatusLines(*session_.manager()->getRootDisplayGroup()))
+    {
+      status.add("Global Status / " + line.name, line.text);
+      if (line.level > worst)
+      {
+        worst = line.level;
+        worst_text = "Global Status: " + line.name + ": " + line.text;
+      }
+    }
+  }
+  status.add("Displays", count);
+  status.summary(diagnosticLevel(worst), worst_text);
+}
+}  // namespace rviz_projector

@@ -1,0 +1,67 @@
+#include "rviz_projector/host/host_reload_service.h"
+
+#include <chrono>
+#include <future>
+
+#include "rviz_projector/host/host_session.h"
+
+namespace rviz_projector
+{
+namespace
+{
+/// Longest a reply waits for the Qt thread (a reload loads plugins and meshes: seconds at most).
+constexpr auto kReplyTimeout = std::chrono::seconds(60);
+}  // namespace
+
+HostReloadService::HostReloadService(std::function<HostLoadResult()> reload)
+  : guard_(std::make_unique<QObject>()), reload_(std::move(reload)), nh_("~")
+{
+  nh_.setCallbackQueue(&queue_);
+  server_ = nh_.advertiseService("reload", &HostReloadService::onRequest, this);
+  spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
+  spinner_->start();
+}
+
+HostReloadService::~HostReloadService()
+{
+  server_.shutdown();
+  {
+    std::lock_guard<std::mutex> lock(guard_mutex_);
+    guard_.reset();  // a request still waiting gets a broken promise: it replies and returns
+  }
+  spinner_->stop();
+}
+
+bool HostReloadService::onRequest(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response)
+{
+  auto promise = std::make_shared<std::promise<HostLoadResult>>();
+  std::future<HostLoadResult> result = promise->get_future();
+  // Queued on the Qt thread; if guard_ is destroyed first, Qt drops the call and the promise with
+  // it (broken promise: the reply says so).
+  bool posted = false;
+  {
+    std::lock_guard<std::mutex> lock(guard_mutex_);
+    posted = guard_ && QMetaObject::invokeMethod(
+                           guard_.get(), [promise, this] { promise->set_value(reload_()); }, Qt::QueuedConnection);
+  }
+  promise.reset();
+  if (!posted || result.wait_for(kReplyTimeout) != std::future_status::ready)
+  {
+    response.success = false;
+    response.message = "projector_host did not handle the reload (shutting down or busy)";
+    return true;
+  }
+  try
+  {
+    const HostLoadResult done = result.get();
+    response.success = done.ok;
+    response.message = done.message;
+  }
+  catch (const std::future_error&)
+  {
+    response.success = false;
+    response.message = "projector_host is shutting down";
+  }
+  return true;
+}
+}  // namespace rviz_projector

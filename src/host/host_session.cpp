@@ -1,0 +1,145 @@
+#include "rviz_projector/host/host_session.h"
+
+#include <OgreRenderWindow.h>
+#include <rviz/display.h>
+#include <rviz/display_group.h>
+#include <rviz/render_panel.h>
+#include <rviz/visualization_manager.h>
+
+#include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_output_window.h"
+#include "rviz_projector/host/host_config.h"
+#include "rviz_projector/host/host_curtain.h"
+
+namespace rviz_projector
+{
+namespace
+{
+/// Longest the reload curtain stays up waiting for the new projectors' first frames.
+constexpr double kCurtainTimeoutSeconds = 2.0;
+
+/// rviz's manager, with every display's render request counted for the projectors
+/// (ProjectionChangeCounter): in projector_host that is how a ProjectorCamera learns that a display
+/// of another package changed (host_mode.h).
+class HostVisualizationManager : public rviz::VisualizationManager
+{
+public:
+  using rviz::VisualizationManager::VisualizationManager;
+  void queueRender() override
+  {
+    rviz::VisualizationManager::queueRender();
+    ProjectionChangeCounter::bump();
+  }
+};
+
+void collect(rviz::DisplayGroup* group, std::vector<rviz::Display*>& out)
+{
+  for (int i = 0; i < group->numDisplays(); ++i)
+  {
+    rviz::Display* display = group->getDisplayAt(i);
+    out.push_back(display);
+    if (auto* nested = qobject_cast<rviz::DisplayGroup*>(display))
+    {
+      collect(nested, out);
+    }
+  }
+}
+}  // namespace
+
+HostSession::HostSession(const QString& config_path) : path_(config_path), curtain_(std::make_unique<HostCurtain>())
+{
+  // The main view's panel exists because rviz's manager needs one (view controller, tools); it is
+  // never shown and its render window never rendered: rviz's update renders active targets only.
+  panel_ = new rviz::RenderPanel();
+  manager_ = new HostVisualizationManager(panel_);
+  panel_->initialize(manager_->getSceneManager(), manager_);
+  manager_->initialize();
+  if (Ogre::RenderWindow* main_view = panel_->getRenderWindow())
+  {
+    main_view->setAutoUpdated(false);
+    main_view->setActive(false);
+  }
+}
+
+HostSession::~HostSession()
+{
+  curtain_.reset();
+  delete manager_;  // deletes the displays: their windows close, the floor goes dark
+  delete panel_;
+}
+
+HostLoadResult HostSession::start()
+{
+  return load(true);
+}
+
+HostLoadResult HostSession::reload()
+{
+  return load(false);
+}
+
+HostLoadResult HostSession::load(bool first)
+{
+  HostLoadResult result;
+  const HostConfigCheck check =
+      checkHostConfig(path_, *manager_->getDisplayFactory(), first ? MissingPlugin::Warn : MissingPlugin::Refuse);
+  if (!check.error.empty())
+  {
+    result.message = first ? check.error : check.error + "; the running configuration is kept";
+    return result;
+  }
+  std::vector<QRect> shown;
+  for (ProjectorCameraDisplay* projector : projectors())
+  {
+    ProjectorOutputWindow* window = projector->outputWindow();
+    if (window && window->isVisible())
+    {
+      shown.push_back(window->frameGeometry());
+    }
+  }
+  curtain_->cover(shown);
+  manager_->load(check.manager_config);
+  ++generation_;
+  const std::vector<ProjectorCameraDisplay*> now = projectors();
+  std::vector<QPointer<ProjectorCameraDisplay>> watched(now.begin(), now.end());
+  curtain_->uncoverWhen(
+      [watched] {
+        for (const QPointer<ProjectorCameraDisplay>& p : watched)
+        {
+          if (p && p->isEnabled() && p->framesRendered() == 0 && p->hasLens())
+          {
+            return false;
+          }
+        }
+        return true;
+      },
+      kCurtainTimeoutSeconds);
+  result.ok = true;
+  result.warnings = check.warnings;
+  result.message = "loaded '" + path_.toStdString() + "': " + std::to_string(check.displays.size()) +
+                   " displays, " + std::to_string(check.projectors) + " ProjectorCamera";
+  Q_EMIT loaded();
+  return result;
+}
+
+std::vector<rviz::Display*> HostSession::displays() const
+{
+  std::vector<rviz::Display*> out;
+  collect(manager_->getRootDisplayGroup(), out);
+  return out;
+}
+
+std::vector<ProjectorCameraDisplay*> HostSession::projectors() const
+{
+  std::vector<ProjectorCameraDisplay*> out;
+  for (rviz::Display* display : displays())
+  {
+    if (auto* projector = qobject_cast<ProjectorCameraDisplay*>(display))
+    {
+      out.push_back(projector);
+    }
+  }
+  return out;
+}
+}  // namespace rviz_projector
