@@ -1,0 +1,248 @@
+#!/usr/bin/env python3
+"""projector_host as the robot runs it (issue 13): a real process under the suite's X server.
+
+- it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px);
+- a reload with a changed property changes the pixels; a broken reload (bad YAML, a plugin that
+  is not installed, a property value of the wrong type, no ProjectorCamera) is refused with a
+  message, keeps the old picture and the process;
+- --watch follows the file;
+- /diagnostics carries the projector's status;
+- SIGINT and SIGTERM end it within 2 s, exit status 0, and the window goes away (floor dark);
+- bad start-up input: a missing file, a config without ProjectorCamera (exit 1), no X display
+  (exit 3), a bad command line (exit 2), a plugin that is not installed (skipped, rest runs).
+The CameraInfo and tf come from host.test (launch/projector.launch).
+"""
+import os
+import shutil
+import signal
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import rospy
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
+from std_srvs.srv import Trigger
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from host_process import HostProcess, grab_window  # noqa: E402
+from rviz_process import RvizProcess, XWindows, describe, wait_for  # noqa: E402
+
+PKG = "rviz_projector"
+CONFIGS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "configs")
+START_TIMEOUT = 40.0
+EXIT_LIMIT = 2.0
+MAGENTA = (255, 0, 255)
+CYAN = (0, 255, 255)
+
+
+def make_path():
+    path = Path()
+    path.header.frame_id = "map"
+    for i in range(41):
+        pose = PoseStamped()
+        pose.header.frame_id = "map"
+        pose.pose.position.x = 0.3 + 0.05 * i
+        pose.pose.orientation.w = 1.0
+        path.poses.append(pose)
+    return path
+
+
+class HostTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("host_test", anonymous=True)
+        cls.plan = rospy.Publisher("/host_test/plan", Path, queue_size=1, latch=True)
+        cls.diagnostics = []
+        cls.diag_lock = threading.Lock()
+        rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
+
+    @classmethod
+    def on_diagnostics(cls, msg):
+        with cls.diag_lock:
+            cls.diagnostics.append(msg)
+
+    def setUp(self):
+        self.x = XWindows()
+        self.procs = []
+        self.tmp = tempfile.mkdtemp(prefix="host_test_")
+        self.publish_path()
+
+    def tearDown(self):
+        for p in self.procs:
+            p.stop()
+        self.x.close()
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    # ---- helpers ---------------------------------------------------------------------------
+    def publish_path(self):
+        path = make_path()
+        path.header.stamp = rospy.Time.now()
+        self.plan.publish(path)
+
+    def config_copy(self, name="host.rviz", replace=None):
+        with open(os.path.join(CONFIGS, name)) as f:
+            text = f.read()
+        for old, new in (replace or {}).items():
+            self.assertIn(old, text)
+            text = text.replace(old, new)
+        path = os.path.join(self.tmp, "config.rviz")
+        self.write(path, text)
+        return path
+
+    def write(self, path, text):
+        # As editors do: a new file renamed over the old one.
+        tmp = path + ".new"
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+
+    def start_host(self, config, args=(), **kw):
+        host = HostProcess(config, args=args, label=self.id().split(".")[-1], **kw)
+        self.procs.append(host)
+        return host
+
+    def output_window(self, pid, timeout=START_TIMEOUT):
+        windows = wait_for(lambda: self.x.mapped_output_windows(pid), timeout, 0.1)
+        return windows[0] if windows else None
+
+    def wait_colour(self, pid, colour, minimum=200, timeout=20.0):
+        """The output window once at least `minimum` pixels of `colour` show (None on timeout)."""
+        def ready():
+            w = self.output_window(pid, timeout=0.5)
+            if not w:
+                return None
+            self.publish_path()
+            pixels = grab_window(self.x, w)
+            return (w, pixels) if pixels.count_colour(colour) >= minimum else None
+        return wait_for(ready, timeout, 0.2)
+
+    def start_showing(self, config, args=()):
+        host = self.start_host(config, args)
+        shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT)
+        self.assertIsNotNone(shown, "projector_host never showed the magenta arrows; windows: %s; log:\n%s"
+                             % (describe(self.x.windows()), host.log_tail()))
+        return host, shown
+
+    def reload(self, node="projector_host"):
+        rospy.wait_for_service("/%s/reload" % node, timeout=20.0)
+        return rospy.ServiceProxy("/%s/reload" % node, Trigger)()
+
+    # ---- tests -----------------------------------------------------------------------------
+    def test_same_pixels_as_rviz(self):
+        config = os.path.join(CONFIGS, "host.rviz")
+        rviz = RvizProcess(config, label="host_same_pixels_rviz")
+        self.procs.append(rviz)
+        shown = self.wait_colour(rviz.pid, MAGENTA, timeout=START_TIMEOUT)
+        self.assertIsNotNone(shown, "rviz never showed the arrows: " + rviz.log_tail())
+        rviz_window, rviz_pixels = shown
+        rviz.stop()
+        self.procs.remove(rviz)
+        self.assertTrue(wait_for(lambda: not self.x.mapped_output_windows(), 10.0), "rviz's window stayed")
+        host, (host_window, host_pixels) = self.start_showing(config)
+        self.assertEqual((rviz_window["x"], rviz_window["y"], rviz_window["width"], rviz_window["height"]),
+                         (host_window["x"], host_window["y"], host_window["width"], host_window["height"]),
+                         "the host's output window is not where rviz's was")
+        a = set(rviz_pixels.lit())
+        b = set(host_pixels.lit())
+        self.assertGreater(len(a), 1000, "too little lit in rviz's projector window to compare")
+        differing = len(a ^ b)
+        self.assertLessEqual(differing, 0.01 * len(a), "%d of %d lit pixels differ" % (differing, len(a)))
+        ca, cb = rviz_pixels.centroid(sorted(a)), host_pixels.centroid(sorted(b))
+        self.assertLessEqual(abs(ca[0] - cb[0]), 0.5, "centroid x: rviz %.2f, host %.2f" % (ca[0], cb[0]))
+        self.assertLessEqual(abs(ca[1] - cb[1]), 0.5, "centroid y: rviz %.2f, host %.2f" % (ca[1], cb[1]))
+
+    def test_reload_changes_pixels_and_broken_reloads_keep_them(self):
+        config = self.config_copy()
+        host, _ = self.start_showing(config)
+        with open(config) as f:
+            good = f.read()
+        self.write(config, good.replace("Arrow color: 255; 0; 255", "Arrow color: 0; 255; 255"))
+        reply = self.reload()
+        self.assertTrue(reply.success, reply.message)
+        self.assertIsNotNone(self.wait_colour(host.pid, CYAN), "the reloaded arrow colour never showed")
+        cyan_config = good.replace("Arrow color: 255; 0; 255", "Arrow color: 0; 255; 255")
+        broken = {
+            "bad YAML": (cyan_config + "\n  - [unclosed\n", "YAML"),
+            "plugin not installed": (cyan_config.replace("Class: rviz/Grid", "Class: no_such_pkg/NoSuchDisplay"),
+                                     "not installed"),
+            "bad property value": (cyan_config.replace("Frame rate limit: 30", "Frame rate limit: fast"),
+                                   "Frame rate limit"),
+            "no ProjectorCamera": (cyan_config.replace("Class: rviz_projector/ProjectorCamera", "Class: rviz/Axes"),
+                                   "no rviz_projector/ProjectorCamera"),
+        }
+        for what, (text, expected) in broken.items():
+            self.write(config, text)
+            reply = self.reload()
+            self.assertFalse(reply.success, what + ": the broken config was accepted: " + reply.message)
+            self.assertIn(expected, reply.message, what)
+            self.assertTrue(host.alive(), what + ": projector_host died: " + host.log_tail())
+            window = self.output_window(host.pid, timeout=5.0)
+            self.assertIsNotNone(window, what + ": the output window went away")
+            self.assertGreater(grab_window(self.x, window).count_colour(CYAN), 200,
+                               what + ": the last good picture is gone")
+
+    def test_watch_follows_the_file(self):
+        config = self.config_copy()
+        host, _ = self.start_showing(config, args=("--watch",))
+        with open(config) as f:
+            text = f.read()
+        self.write(config, text.replace("Arrow color: 255; 0; 255", "Arrow color: 0; 255; 255"))
+        self.assertIsNotNone(self.wait_colour(host.pid, CYAN), "--watch did not reload: " + host.log_tail())
+
+    def test_diagnostics(self):
+        host, _ = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
+
+        def projector_status():
+            with self.diag_lock:
+                for msg in reversed(self.diagnostics):
+                    for status in msg.status:
+                        if status.name.endswith("projector_host: Projector"):
+                            return status
+            return None
+        status = wait_for(projector_status, 10.0, 0.1)
+        self.assertIsNotNone(status, "no 'projector_host: Projector' status on /diagnostics")
+        keys = {kv.key: kv.value for kv in status.values}
+        self.assertEqual(status.hardware_id, "projector_host")
+        self.assertIn("Frames rendered", keys)
+        self.assertGreater(int(keys["Frames rendered"]), 0)
+        self.assertTrue(any(k.startswith("Status / ") for k in keys), keys)
+
+    def test_signals_end_it_and_the_floor_goes_dark(self):
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            host, _ = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
+            host.signal(sig)
+            took = host.wait_exit(EXIT_LIMIT + 5.0)
+            self.assertIsNotNone(took, "%s: projector_host still runs" % sig.name)
+            self.assertLessEqual(took, EXIT_LIMIT, "%s: exit took %.2f s" % (sig.name, took))
+            self.assertEqual(host.returncode(), 0, "%s: %s" % (sig.name, host.log_tail()))
+            self.assertEqual(self.x.mapped_output_windows(host.pid), [], sig.name)
+
+    def test_bad_start_up_input(self):
+        cases = [
+            ("missing file", [os.path.join(self.tmp, "nowhere.rviz")], {}, 1, "does not exist"),
+            ("no ProjectorCamera", [self.config_copy(replace={"Class: rviz_projector/ProjectorCamera":
+                                                              "Class: rviz/Axes"})], {}, 1,
+             "no rviz_projector/ProjectorCamera"),
+            ("no X display", [os.path.join(CONFIGS, "host.rviz")], {"DISPLAY": None}, 3, "no X display"),
+            ("usage", ["--no-such-option", os.path.join(CONFIGS, "host.rviz")], {}, 2, "unknown option"),
+        ]
+        for what, args, env, code, text in cases:
+            host = HostProcess(None, args=args, label="bad_" + what.replace(" ", "_"), env_changes=env)
+            self.procs.append(host)
+            self.assertIsNotNone(host.wait_exit(30.0), what + ": still running")
+            self.assertEqual(host.returncode(), code, what + ": " + host.log_tail())
+            self.assertIn(text, host.log_text(), what)
+
+    def test_missing_plugin_at_start_is_skipped(self):
+        config = self.config_copy(replace={"Class: rviz/Grid": "Class: no_such_pkg/NoSuchDisplay"})
+        host, _ = self.start_showing(config)
+        self.assertIn("not installed", host.log_text())
+
+
+if __name__ == "__main__":
+    import rostest
+    rostest.rosrun(PKG, "host", HostTest)
