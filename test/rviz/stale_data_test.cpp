@@ -147,7 +147,7 @@ TEST_F(StaleDataTest, PathTimeoutLoweredLiveClearsAtOnce)
   EXPECT_EQ(path->subProp("Path timeout")->getValue().toDouble(), 0.0) << "negative: clamped to 0";
 }
 
-TEST_F(RvizTest, NegativePathTimeoutInAConfigIsClampedAndReported)
+TEST_F(RvizTest, NegativeTimeoutsInAConfigAreClampedAndReported)
 {
   const char* yaml = R"(
 Displays:
@@ -156,6 +156,10 @@ Displays:
     Enabled: true
     Topic: /test/plan
     Path timeout: -3
+  - Class: rviz_projector/ProjectorCamera
+    Name: Bad tf timeout
+    Enabled: false
+    TF timeout: -1
 )";
   rviz::Config config;
   rviz::YamlConfigReader reader;
@@ -163,11 +167,15 @@ Displays:
   ASSERT_FALSE(reader.error()) << reader.errorMessage().toStdString();
   rviz_->manager()->load(config);
   rviz::DisplayGroup* root = rviz_->manager()->getRootDisplayGroup();
-  ASSERT_EQ(root->numDisplays(), 1);
+  ASSERT_EQ(root->numDisplays(), 2);
   rviz::Display* d = root->getDisplayAt(0);
   EXPECT_EQ(d->subProp("Path timeout")->getValue().toDouble(), 0.0);
   const Status s = statusOf(d, "Config");
   EXPECT_NE(s.text.indexOf("Path timeout: '-3'"), -1) << s.text.toStdString();
+  rviz::Display* camera = root->getDisplayAt(1);
+  EXPECT_EQ(camera->subProp("TF timeout")->getValue().toDouble(), 0.0);
+  const Status c = statusOf(camera, "Config");
+  EXPECT_NE(c.text.indexOf("TF timeout: '-1'"), -1) << c.text.toStdString();
 }
 
 TEST_F(StaleDataTest, StaleTfBlanksTheProjectorAndFreshTfBringsThePictureBack)
