@@ -12,6 +12,7 @@
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/status_property.h>
 
+#include "rviz_projector/core/data_age.h"
 #include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
@@ -107,6 +108,14 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
       this, SLOT(updateAppearance()), this);
   style_property_->addOption("Flat", kFlat);
   style_property_->addOption("3D", kSolid);
+
+  path_timeout_property_ = new rviz::FloatProperty(
+      "Path timeout", 0.0f,
+      "Seconds: when no new path arrived for this long, the arrows and the destination circle are "
+      "cleared (the projector shows nothing of this path) until the next one. Counted from when the "
+      "message arrived, not from its header stamp. 0: never.",
+      this, SLOT(checkPathTimeout()), this);
+  path_timeout_property_->setMin(0.0f);
 }
 
 ProjectedPathDisplay::~ProjectedPathDisplay()
@@ -174,7 +183,7 @@ void ProjectedPathDisplay::load(const rviz::Config& config)
   ConfigCheck check;
   for (rviz::FloatProperty* p : {spacing_property_, shaft_length_property_, shaft_diameter_property_,
                                  head_length_property_, head_diameter_property_, circle_diameter_property_,
-                                 alpha_property_, height_property_})
+                                 alpha_property_, height_property_, path_timeout_property_})
   {
     check.number(config.mapGetChild(p->getName()), p);
   }
@@ -251,12 +260,41 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
   dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);
   last_msg_ = msg;
+  last_arrival_ = std::chrono::steady_clock::now();  // drained within milliseconds of its arrival
   rebuild();
 }
 
 void ProjectedPathDisplay::drainQueue()
 {
   path_queue_.callAvailable();
+  checkPathTimeout();
+}
+
+void ProjectedPathDisplay::checkPathTimeout()
+{
+  if (!last_msg_ || !arrow_mesh_)
+  {
+    return;  // nothing drawn
+  }
+  const double timeout = path_timeout_property_->getFloat();
+  const double age = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_arrival_).count();
+  if (!isStale(age, timeout))
+  {
+    return;
+  }
+  // Forget the path (a property change or a new fixed frame must not bring it back); only a new
+  // path is drawn again. Raising the timeout afterwards shows nothing until then.
+  last_msg_.reset();
+  floor_points_.clear();
+  dropped_poses_ = 0;
+  spaced_ = &empty_;
+  arrow_mesh_->clear();
+  circle_mesh_->clear();
+  deleteStatus("Style");
+  setStatus(rviz::StatusProperty::Warn, "Path",
+            QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
+  ProjectionChangeCounter::bump();
+  context_->queueRender();
 }
 
 void ProjectedPathDisplay::updateSpacing()

@@ -412,24 +412,16 @@ void ProjectorCameraDisplay::setTransformStatus(int state, const QString& text)
 bool ProjectorCameraDisplay::updateCameraPose()
 {
   const std::string frame = projectorFrame();
-  const ProjectorPose pose = lookupProjectorPose(*context_->getTF2BufferPtr(), fixed_frame_.toStdString(), frame);
-  switch (pose.state)
+  const double timeout = props_.tf_timeout->getFloat();
+  const ProjectorPose pose = lookupProjectorPose(*context_->getTF2BufferPtr(), fixed_frame_.toStdString(), frame,
+                                                 ros::Time::now().toSec(), timeout);
+  tf_age_ = pose.state == ProjectorPose::Ok || pose.state == ProjectorPose::Stale ? pose.age : std::nan("");
+  if (pose.state != ProjectorPose::Ok)
   {
-    case ProjectorPose::NoFrame:
-      setTransformStatus(pose.state, "No projector frame: the CameraInfo header has no frame_id and the Frame "
-                                     "property is empty");
-      return false;
-    case ProjectorPose::NoTransform:
-      setTransformStatus(pose.state, QString("No transform from projector frame [%1] to fixed frame [%2]: %3")
-                                         .arg(QString::fromStdString(frame), fixed_frame_,
-                                              QString::fromStdString(pose.error)));
-      return false;
-    case ProjectorPose::NotFinite:
-      setTransformStatus(pose.state,
-                         QString("Transform of [%1] contains NaN/Inf").arg(QString::fromStdString(frame)));
-      return false;
-    case ProjectorPose::Ok:
-      break;
+    // A stale pose blanks the projector as a missing one does: no scene rather than an old picture.
+    setTransformStatus(pose.state,
+                       QString::fromStdString(describeProblem(pose, fixed_frame_.toStdString(), frame, timeout)));
+    return false;
   }
   if (transform_state_ != ProjectorPose::Ok)
   {
@@ -525,6 +517,7 @@ void ProjectorCameraDisplay::onFrameTimer()
     onLensChanged();
   }
   renderNow();
+  rate_meter_.sample(static_cast<double>(clock_.nsecsElapsed()) * 1e-9, frames_rendered_);
   if (isEnabled())
   {
     const double delay = pacer_.tick(static_cast<double>(clock_.nsecsElapsed()) * 1e-9);

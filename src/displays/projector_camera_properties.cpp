@@ -29,6 +29,13 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
       "tf frame of the projector's optical frame (z forward, x right, y down). Empty: the CameraInfo "
       "header's frame_id.",
       display, SLOT(applyProjection()), display);
+  tf_timeout = new rviz::FloatProperty(
+      "TF timeout", 1.0f,
+      "Seconds: when the newest tf of the projector's pose in the fixed frame is older than this (its "
+      "stamp against the ROS clock), the projector blanks (no scene, only the background) until fresh "
+      "tf arrives. A chain of static transforms only never goes stale. 0: never.",
+      display, SLOT(applyProjection()), display);
+  tf_timeout->setMin(0.0f);
   screen = new rviz::EnumProperty(
       "Output screen", kAutomaticScreen,
       "Screen the projector is plugged into (its name, e.g. HDMI-1). Automatic: a screen of rviz's desktop other than "
@@ -136,8 +143,8 @@ QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
   }
   check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_rows->getName()), crosshair_rows);
   check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_cols->getName()), crosshair_cols);
-  for (rviz::Property* p : {static_cast<rviz::Property*>(near_clip), static_cast<rviz::Property*>(far_clip),
-                            static_cast<rviz::Property*>(frame_rate)})
+  for (rviz::Property* p : {static_cast<rviz::Property*>(tf_timeout), static_cast<rviz::Property*>(near_clip),
+                            static_cast<rviz::Property*>(far_clip), static_cast<rviz::Property*>(frame_rate)})
   {
     check.number(config.mapGetChild(p->getName()), p);
   }

@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projector_lens_source.h"
 
+#include <cmath>
+
 #include "rviz_projector/core/lens_view.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
@@ -53,6 +55,7 @@ void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
 {
   received_ = true;
   last_ = msg;
+  last_received_ = std::chrono::steady_clock::now();
   frame_id_ = msg->header.frame_id;
   PinholeModel lens;
   check_ = PinholeModel::fromCalibration(toLensCalibration(*msg), lens);
@@ -63,6 +66,15 @@ void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
     lens_ = lens;
     narrow_view_ = narrowViewWarning(lens_);
   }
+}
+
+double ProjectorLensSource::secondsSinceInfo() const
+{
+  if (!last_)
+  {
+    return std::nan("");
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_received_).count();
 }
 
 LensStatuses ProjectorLensSource::statuses(const QString& topic) const

@@ -1,12 +1,16 @@
 #include "rviz_projector/displays/projector_pose.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <tf2_ros/buffer.h>
 
+#include "rviz_projector/core/data_age.h"
+
 namespace rviz_projector
 {
-ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame)
+ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame,
+                                  double now, double timeout)
 {
   ProjectorPose pose;
   if (frame.empty())
@@ -35,12 +39,38 @@ ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_
       return pose;
     }
   }
-  pose.state = ProjectorPose::Ok;
+  // With ros::Time(0), tf stamps the result with the chain's latest common time (0 when all static).
+  pose.age = dataAge(t.header.stamp.toSec(), now);
+  pose.state = isStale(pose.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
   pose.qx = q.x;
   pose.qy = q.y;
   pose.qz = q.z;
   pose.qw = q.w;
   pose.optical_to_fixed = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{p.x, p.y, p.z});
   return pose;
+}
+
+std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_frame, const std::string& frame,
+                            double timeout)
+{
+  switch (pose.state)
+  {
+    case ProjectorPose::NoFrame:
+      return "No projector frame: the CameraInfo header has no frame_id and the Frame property is empty";
+    case ProjectorPose::NoTransform:
+      return "No transform from projector frame [" + frame + "] to fixed frame [" + fixed_frame + "]: " + pose.error;
+    case ProjectorPose::NotFinite:
+      return "Transform of [" + frame + "] contains NaN/Inf";
+    case ProjectorPose::Stale:
+    {
+      // Tenths of a second: the text (and the status) changes at most 10 times a second.
+      char text[64];
+      std::snprintf(text, sizeof(text), "%.1f s old (TF timeout %g s)", pose.age, timeout);
+      return "tf of '" + frame + "' in '" + fixed_frame + "' is " + text + ": projector blanked";
+    }
+    case ProjectorPose::Ok:
+      break;
+  }
+  return std::string();
 }
 }  // namespace rviz_projector

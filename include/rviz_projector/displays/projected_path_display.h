@@ -3,6 +3,7 @@
 #pragma once
 
 #ifndef Q_MOC_RUN
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -78,6 +79,9 @@ private Q_SLOTS:
   void drainQueue();
   void updateSpacing();
   void updateAppearance();  // colours, alpha, height, style: same arrows, new meshes
+  /// Clears the drawing when the path shown arrived longer than Path timeout ago (also called by
+  /// the drain timer, which runs whether or not messages arrive).
+  void checkPathTimeout();
 
 private:
   SpacingParameters spacingParameters() const;
@@ -98,6 +102,7 @@ private:
   rviz::FloatProperty* alpha_property_;
   rviz::FloatProperty* height_property_;
   rviz::EnumProperty* style_property_;
+  rviz::FloatProperty* path_timeout_property_;
 
   // Paths arrive on a queue of this display's own (path_queue_), drained every few milliseconds by
   // its timer: a new plan reaches the projector without waiting for rviz's next main-view frame,
@@ -108,6 +113,7 @@ private:
   SpacedPath empty_;
   std::vector<Vec2> floor_points_;  // last path, in the fixed frame
   nav_msgs::Path::ConstPtr last_msg_;  // last path drawn (null: none yet); floor_points_ hold it
+  std::chrono::steady_clock::time_point last_arrival_;  // when last_msg_ arrived (steady wall clock)
   std::size_t dropped_poses_ = 0;
   PathTriangles triangles_;  // buffers kept between paths
   std::size_t mesh_builds_ = 0;

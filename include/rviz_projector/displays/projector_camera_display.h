@@ -10,12 +10,15 @@
 //   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
 //   lookupProjectorPose        the projector's pose from tf
 //   FramePacer (core)          frame deadlines at the Frame rate limit / screen refresh
+//   FrameRateMeter (core)      frames actually rendered per second, for health()
+//   health() (projector_camera_health.cpp)  what the display does, in plain numbers
 // See README "Architecture" for how one frame flows.
 #pragma once
 
 #ifndef Q_MOC_RUN
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -29,9 +32,11 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "rviz_projector/core/frame_pacer.h"
+#include "rviz_projector/core/frame_rate_meter.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/core/screen_choice.h"
+#include "rviz_projector/displays/projector_camera_health.h"
 #include "rviz_projector/displays/projector_camera_properties.h"
 #include "rviz_projector/displays/projector_lens_source.h"
 #endif
@@ -85,6 +90,8 @@ public:
   bool hasLens() const { return lens_source_.hasLens(); }
   /// The visibility bit used by the projector view (0 when none could be allocated).
   std::uint32_t visibilityBit() const { return vis_bit_; }
+  /// What the display is doing now (frame rate, data ages, blanking, window), for diagnostics.
+  ProjectorCameraHealth health() const;
 
 protected:
   void onInitialize() override;
@@ -148,6 +155,7 @@ private:
   bool pose_ok_ = false;
   RigidTransform pose_;       ///< optical frame -> fixed frame, when pose_ok_
   int transform_state_ = -1;  ///< which Transform status is shown (avoids rebuilding its text)
+  double tf_age_ = std::numeric_limits<double>::quiet_NaN();  ///< age of the last pose's tf, s (NaN: none)
 
   std::unique_ptr<ProjectionGate> gate_;
   std::unique_ptr<ProjectorOutput> output_;
@@ -157,6 +165,7 @@ private:
   QTimer frame_timer_;
   QElapsedTimer clock_;
   FramePacer pacer_;
+  FrameRateMeter rate_meter_;  ///< sampled at each frame timer tick
   std::uint64_t frames_rendered_ = 0;
   std::uint64_t frames_skipped_ = 0;
   std::uint64_t own_changes_ = 0;

@@ -43,6 +43,7 @@ struct ProjectorCameraProperties
 
   rviz::RosTopicProperty* topic;
   rviz::StringProperty* frame;
+  rviz::FloatProperty* tf_timeout;  ///< seconds, 0 = never
   rviz::EnumProperty* screen;
   rviz::BoolProperty* full_screen;
   rviz::ColorProperty* background;

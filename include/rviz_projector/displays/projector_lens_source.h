@@ -3,6 +3,7 @@
 // and never a reason to spin rviz's global queue (whose callbacks may delete the display).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -51,6 +52,8 @@ public:
   /// A usable lens from the last CameraInfo.
   bool hasLens() const { return has_lens_; }
   const PinholeModel& lens() const { return lens_; }
+  /// Seconds since the last CameraInfo arrived (steady clock; NaN without one).
+  double secondsSinceInfo() const;
   /// frame_id of the last CameraInfo (empty without one).
   const std::string& frameId() const { return frame_id_; }
   /// The statuses for the display; `topic` names the topic in "No CameraInfo received".
@@ -64,6 +67,7 @@ private:
   ros::NodeHandle nh_;
   ros::Subscriber sub_;
   sensor_msgs::CameraInfo::ConstPtr last_;
+  std::chrono::steady_clock::time_point last_received_;  ///< when last_ arrived
   bool received_ = false;
   std::string frame_id_;
   PinholeModel lens_;

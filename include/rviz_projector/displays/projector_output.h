@@ -79,6 +79,8 @@ public:
   void destroy();
 
   bool isShown() const;
+  /// Name of the screen the window is shown on (empty while hidden).
+  const std::string& shownScreen() const { return screen_name_; }
   /// Refresh rate of the screen the window is on, Hz (0 when unknown).
   double refreshRate() const;
   ProjectorOutputWindow* window() const { return window_.get(); }

@@ -1,5 +1,6 @@
 // One part of ProjectorCameraDisplay: the projector's pose from tf, at the latest available time
-// (a latched CameraInfo carries an old stamp; tf extrapolation errors must not blank the view).
+// (a latched CameraInfo carries an old stamp; tf extrapolation errors must not blank the view), and
+// whether that pose is too old to show (TF timeout: tf data older than it blanks the projector).
 #pragma once
 
 #include <string>
@@ -20,13 +21,24 @@ struct ProjectorPose
     Ok,
     NoFrame,      ///< no frame_id in the CameraInfo and the Frame property is empty
     NoTransform,  ///< tf cannot transform the frame into the fixed frame
-    NotFinite     ///< the transform holds NaN/Inf
+    NotFinite,    ///< the transform holds NaN/Inf
+    Stale         ///< the newest tf of the chain is older than the TF timeout (the pose is filled in)
   };
   State state = NoFrame;
   std::string error;               ///< tf's message (NoTransform)
   RigidTransform optical_to_fixed; ///< valid when Ok
   double qx = 0, qy = 0, qz = 0, qw = 1;  ///< its rotation as tf gave it
+  /// Seconds from the chain's stamp to `now` (Ok, Stale): tf's latest common time of the chain
+  /// fixed frame -> frame, i.e. the newest data of its least recently updated moving link; 0 for a
+  /// chain of static transforms only (stamp 0), which never goes stale.
+  double age = 0;
 };
 
-ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame);
+/// The pose of `frame` in `fixed_frame` at the latest time tf has for the whole chain. `now` is
+/// ros::Time::now() in seconds; with `timeout` > 0, a chain older than `timeout` seconds is Stale.
+ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame,
+                                  double now = 0.0, double timeout = 0.0);
+/// The Transform status text of a pose that is not Ok (why the projector shows no scene).
+std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_frame, const std::string& frame,
+                            double timeout);
 }  // namespace rviz_projector
