@@ -2,6 +2,11 @@
 
 #include <algorithm>
 
+#include <OgreMaterialManager.h>
+#include <OgreMeshManager.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <OgreTextureManager.h>
 #include <QPointer>
 #include <rviz/display.h>
 #include <rviz/display_group.h>
@@ -31,6 +36,42 @@ unsigned char diagnosticLevel(int rviz_level)
     default:
       return diagnostic_msgs::DiagnosticStatus::ERROR;
   }
+}
+
+struct OgreResourceCounts
+{
+  std::size_t meshes = 0, materials = 0, textures = 0, scene_nodes = 0;
+};
+
+std::size_t countNodes(const Ogre::Node* node)
+{
+  std::size_t n = 1;
+  for (const Ogre::Node* child : node->getChildren())
+  {
+    n += countNodes(child);
+  }
+  return n;
+}
+
+std::size_t resourceCount(Ogre::ResourceManager& manager)
+{
+  std::size_t n = 0;
+  for (auto it = manager.getResourceIterator(); it.hasMoreElements(); it.moveNext())
+  {
+    ++n;
+  }
+  return n;
+}
+
+/// What a soak watches for leaks: OGRE's resources and the scene graph.
+OgreResourceCounts ogreResourceCounts(Ogre::SceneManager* scene)
+{
+  OgreResourceCounts counts;
+  counts.meshes = resourceCount(Ogre::MeshManager::getSingleton());
+  counts.materials = resourceCount(Ogre::MaterialManager::getSingleton());
+  counts.textures = resourceCount(Ogre::TextureManager::getSingleton());
+  counts.scene_nodes = scene ? countNodes(scene->getRootSceneNode()) : 0;
+  return counts;
 }
 
 std::string displayLabel(const rviz::Display& display)
@@ -120,6 +161,12 @@ void HostDiagnostics::configStatus(diagnostic_updater::DiagnosticStatusWrapper& 
                                                              "configuration running, some displays skipped") :
                                    "last reload refused: " + last_message_);
   status.add("Config file", session_.configPath().toStdString());
+  status.add("Main view frames", session_.mainViewFrames());
+  const OgreResourceCounts ogre = ogreResourceCounts(session_.manager()->getSceneManager());
+  status.add("OGRE meshes", ogre.meshes);
+  status.add("OGRE materials", ogre.materials);
+  status.add("OGRE textures", ogre.textures);
+  status.add("OGRE scene nodes", ogre.scene_nodes);
   status.add("Loads", session_.generation());
   status.add("Last load", last_message_);
   for (std::size_t i = 0; i < last_warnings_.size(); ++i)

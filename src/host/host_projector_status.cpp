@@ -1,12 +1,26 @@
 #include "rviz_projector/host/host_projector_status.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include <rviz/properties/status_property.h>
 
 #include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_camera_health.h"
 #include "rviz_projector/host/host_diagnostics.h"
 
 namespace rviz_projector
 {
+namespace
+{
+std::string seconds(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  return text;
+}
+}  // namespace
+
 void fillProjectorStatus(const ProjectorCameraDisplay& projector, const std::vector<DisplayStatusLine>& lines,
                          diagnostic_updater::DiagnosticStatusWrapper& status)
 {
@@ -21,10 +35,24 @@ void fillProjectorStatus(const ProjectorCameraDisplay& projector, const std::vec
       summary = line.name + ": " + line.text;
     }
   }
+  const ProjectorCameraHealth health = projector.health();
   status.add("Enabled", projector.isEnabled());
-  status.add("Frames rendered", projector.framesRendered());
-  status.add("Frames skipped (nothing changed)", projector.framesSkipped());
-  status.add("Lens", projector.hasLens());
+  status.addf("Output frame rate (frames/s)", "%.1f", health.frame_rate_hz);
+  status.add("Seconds since last frame", health.seconds_since_last_frame < 0.0 ?
+                                             std::string("no frame yet") :
+                                             seconds(health.seconds_since_last_frame));
+  status.add("Frames rendered", health.frames_rendered);
+  status.add("Frames skipped (nothing changed)", health.frames_skipped);
+  status.add("tf age (s)", std::isnan(health.tf_age_s) ? std::string("no pose") : seconds(health.tf_age_s));
+  status.add("CameraInfo age (s)",
+             std::isnan(health.camera_info_age_s) ? std::string("none received") : seconds(health.camera_info_age_s));
+  status.add("Lens", health.has_lens);
+  status.add("Pose", health.pose_ok);
+  status.add("Blanked", health.blanked ? "yes: " + health.blank_reason : std::string("no"));
+  status.add("Window shown", health.window_shown);
+  status.add("Full screen", health.full_screen);
+  status.add("Screen", health.screen_name.empty() ? std::string("none") : health.screen_name);
+  status.add("Screen connected", health.screen_connected);
   unsigned char level = diagnostic_msgs::DiagnosticStatus::OK;
   if (worst == rviz::StatusProperty::Warn)
   {
@@ -33,6 +61,11 @@ void fillProjectorStatus(const ProjectorCameraDisplay& projector, const std::vec
   else if (worst >= rviz::StatusProperty::Error)
   {
     level = diagnostic_msgs::DiagnosticStatus::ERROR;
+  }
+  if (projector.isEnabled() && !health.screen_connected && level < diagnostic_msgs::DiagnosticStatus::ERROR)
+  {
+    level = diagnostic_msgs::DiagnosticStatus::ERROR;
+    summary = "no screen: the output window is not shown";
   }
   status.summary(level, summary);
 }

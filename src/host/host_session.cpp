@@ -1,9 +1,12 @@
 #include "rviz_projector/host/host_session.h"
 
+#include <OgreRenderTargetListener.h>
 #include <OgreRenderWindow.h>
 #include <rviz/display.h>
 #include <rviz/display_group.h>
 #include <rviz/render_panel.h>
+#include <rviz/view_controller.h>
+#include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
 
 #include "rviz_projector/displays/projection_change_counter.h"
@@ -33,6 +36,36 @@ public:
   }
 };
 
+/// A frame name that no tf tree has: the main view's controller follows it.
+constexpr const char* kNoFrame = "projector_host/no_main_view";
+
+/// rviz's view controllers follow their Target Frame and ask for a render on every update while
+/// they find it; in the host nobody looks at the main view, and those requests would make every
+/// projector render every frame (they count as scene changes, see HostVisualizationManager).
+void parkMainView(rviz::ViewManager* views)
+{
+  rviz::ViewController* view = views ? views->getCurrent() : nullptr;
+  if (view == nullptr)
+  {
+    return;
+  }
+  for (int i = 0; i < view->numChildren(); ++i)
+  {
+    if (view->childAt(i)->getName() == "Target Frame")
+    {
+      view->childAt(i)->setValue(QString(kNoFrame));
+    }
+  }
+}
+
+/// Counts the frames rendered into a render target.
+class FrameCounter : public Ogre::RenderTargetListener
+{
+public:
+  void postRenderTargetUpdate(const Ogre::RenderTargetEvent& /*event*/) override { ++frames; }
+  std::uint64_t frames = 0;
+};
+
 void collect(rviz::DisplayGroup* group, std::vector<rviz::Display*>& out)
 {
   for (int i = 0; i < group->numDisplays(); ++i)
@@ -55,16 +88,22 @@ HostSession::HostSession(const QString& config_path) : path_(config_path), curta
   manager_ = new HostVisualizationManager(panel_);
   panel_->initialize(manager_->getSceneManager(), manager_);
   manager_->initialize();
+  main_view_counter_ = std::make_unique<FrameCounter>();
   if (Ogre::RenderWindow* main_view = panel_->getRenderWindow())
   {
     main_view->setAutoUpdated(false);
     main_view->setActive(false);
+    main_view->addListener(main_view_counter_.get());
   }
 }
 
 HostSession::~HostSession()
 {
   curtain_.reset();
+  if (Ogre::RenderWindow* main_view = panel_->getRenderWindow())
+  {
+    main_view->removeListener(main_view_counter_.get());
+  }
   delete manager_;  // deletes the displays: their windows close, the floor goes dark
   delete panel_;
 }
@@ -100,6 +139,7 @@ HostLoadResult HostSession::load(bool first)
   }
   curtain_->cover(shown);
   manager_->load(check.manager_config);
+  parkMainView(manager_->getViewManager());
   ++generation_;
   const std::vector<ProjectorCameraDisplay*> now = projectors();
   std::vector<QPointer<ProjectorCameraDisplay>> watched(now.begin(), now.end());
@@ -121,6 +161,11 @@ HostLoadResult HostSession::load(bool first)
                    " displays, " + std::to_string(check.projectors) + " ProjectorCamera";
   Q_EMIT loaded();
   return result;
+}
+
+std::uint64_t HostSession::mainViewFrames() const
+{
+  return static_cast<const FrameCounter&>(*main_view_counter_).frames;
 }
 
 std::vector<rviz::Display*> HostSession::displays() const

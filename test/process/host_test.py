@@ -63,7 +63,7 @@ class HostTest(unittest.TestCase):
     @classmethod
     def on_diagnostics(cls, msg):
         with cls.diag_lock:
-            cls.diagnostics.append(msg)
+            cls.diagnostics.append((time.monotonic(), msg))
 
     def setUp(self):
         self.x = XWindows()
@@ -123,8 +123,9 @@ class HostTest(unittest.TestCase):
     def start_showing(self, config, args=()):
         host = self.start_host(config, args)
         shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT)
-        self.assertIsNotNone(shown, "projector_host never showed the magenta arrows; windows: %s; log:\n%s"
-                             % (describe(self.x.windows()), host.log_tail()))
+        if shown is None:
+            self.fail("projector_host never showed the magenta arrows; windows: %s; diagnostics: %s; log:\n%s"
+                      % (describe(self.x.windows()), self.diagnostics_text(), host.log_tail()))
         return host, shown
 
     def reload(self, node="projector_host"):
@@ -193,23 +194,82 @@ class HostTest(unittest.TestCase):
         self.write(config, text.replace("Arrow color: 255; 0; 255", "Arrow color: 0; 255; 255"))
         self.assertIsNotNone(self.wait_colour(host.pid, CYAN), "--watch did not reload: " + host.log_tail())
 
-    def test_diagnostics(self):
-        host, _ = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
-
-        def projector_status():
+    def latest_status(self, name, after=0.0, timeout=10.0):
+        """The newest diagnostic status `projector_host: name` received after time `after`."""
+        def find():
             with self.diag_lock:
-                for msg in reversed(self.diagnostics):
+                for stamp, msg in reversed(self.diagnostics):
+                    if stamp < after:
+                        break
                     for status in msg.status:
-                        if status.name.endswith("projector_host: Projector"):
+                        if status.name.endswith("projector_host: " + name):
                             return status
             return None
-        status = wait_for(projector_status, 10.0, 0.1)
-        self.assertIsNotNone(status, "no 'projector_host: Projector' status on /diagnostics")
-        keys = {kv.key: kv.value for kv in status.values}
+        status = wait_for(find, timeout, 0.1)
+        self.assertIsNotNone(status, "no 'projector_host: %s' status on /diagnostics" % name)
+        return status, {kv.key: kv.value for kv in status.values}
+
+    def diagnostics_text(self):
+        with self.diag_lock:
+            if not self.diagnostics:
+                return "none received"
+            return "; ".join("%s [%d] %s {%s}" % (st.name, st.level, st.message,
+                                                  ", ".join("%s=%s" % (kv.key, kv.value) for kv in st.values))
+                             for st in self.diagnostics[-1][1].status)
+
+    def frames_rendered(self):
+        return int(self.latest_status("Projector", after=time.monotonic())[1]["Frames rendered"])
+
+    def test_diagnostics(self):
+        host, _ = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
+        status, keys = self.latest_status("Projector")
         self.assertEqual(status.hardware_id, "projector_host")
-        self.assertIn("Frames rendered", keys)
         self.assertGreater(int(keys["Frames rendered"]), 0)
         self.assertTrue(any(k.startswith("Status / ") for k in keys), keys)
+        _, config = self.latest_status("config")
+        self.assertEqual(config["Main view frames"], "0", "the host rendered rviz's main view")
+        for key in ("OGRE meshes", "OGRE materials", "OGRE textures", "OGRE scene nodes"):
+            self.assertGreater(int(config[key]), 0, key)
+        _, displays = self.latest_status("displays")
+        self.assertIn("Marker (rviz/Marker)", displays)
+
+    def check_renders_only_on_change(self, config, allowed_idle_frames):
+        host, _ = self.start_showing(config)
+        before = self.frames_rendered()  # the latched path is not published again from here on
+        end = time.monotonic() + 3.0
+        wait_for(lambda: time.monotonic() >= end, 4.0, 0.1)
+        idle = self.frames_rendered() - before
+        self.assertLessEqual(idle, allowed_idle_frames, "%d frames rendered in 3 s with nothing changing" % idle)
+        path = make_path()
+        for pose in path.poses:
+            pose.pose.position.y = 0.2
+        self.plan.publish(path)
+        self.assertTrue(wait_for(lambda: self.frames_rendered() > before + idle, 10.0, 0.2),
+                        "a new path rendered no frame")
+
+    def test_path_timeout_clears_the_arrows(self):
+        config = self.config_copy(replace={"      Topic: /host_test/plan\n": "      Topic: /host_test/plan\n"
+                                           "      Path timeout: 1.5\n"})
+        host, (window, _) = self.start_showing(config)
+        # No new path from here on: within the timeout (and a margin for a loaded machine) the floor
+        # goes dark, and the display says why.
+        self.assertTrue(wait_for(lambda: grab_window(self.x, window).count_colour(MAGENTA) == 0, 15.0, 0.2),
+                        "the arrows stayed after the Path timeout")
+        _, displays = self.latest_status("displays", after=time.monotonic())
+        self.assertTrue(any("arrows cleared" in v for v in displays.values()), displays)
+        self.publish_path()
+        self.assertIsNotNone(self.wait_colour(host.pid, MAGENTA), "a new path did not bring the arrows back")
+
+    def test_renders_only_on_change(self):
+        self.check_renders_only_on_change(os.path.join(CONFIGS, "host.rviz"), 1)
+
+    def test_renders_only_on_change_with_rviz_displays_projected(self):
+        # rviz's Marker display ticked in the projector's Visibility: it does not announce changes
+        # to this package; the host sees its render requests and scene graph, plus a 1 s keep-alive.
+        config = self.config_copy(replace={"      Frame rate limit: 30\n": "      Frame rate limit: 30\n"
+                                           "      Visibility:\n        Marker: true\n        Projected path: true\n"
+                                           "        Grid: false\n        Value: true\n"})
+        self.check_renders_only_on_change(config, 5)
 
     def test_signals_end_it_and_the_floor_goes_dark(self):
         for sig in (signal.SIGINT, signal.SIGTERM):

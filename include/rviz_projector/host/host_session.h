@@ -5,6 +5,7 @@
 #pragma once
 
 #ifndef Q_MOC_RUN
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +14,11 @@
 #include <QPointer>
 #include <QString>
 #endif
+
+namespace Ogre
+{
+class RenderTargetListener;
+}
 
 namespace rviz
 {
@@ -54,6 +60,8 @@ public:
   std::vector<rviz::Display*> displays() const;
   /// Number of loads that changed the running configuration (start included).
   int generation() const { return generation_; }
+  /// Frames rendered into rviz's main view since start: 0 is the point of the host.
+  std::uint64_t mainViewFrames() const;
 
 Q_SIGNALS:
   /// The displays were replaced (start or a successful reload).
@@ -66,6 +74,7 @@ private:
   rviz::RenderPanel* panel_ = nullptr;
   rviz::VisualizationManager* manager_ = nullptr;
   std::unique_ptr<HostCurtain> curtain_;
+  std::unique_ptr<Ogre::RenderTargetListener> main_view_counter_;
   int generation_ = 0;
 };
 }  // namespace rviz_projector
