@@ -80,3 +80,21 @@ check_demo_headless() {
     tail -n 8 "$log" | sed 's/^/  | /'
   fi
 }
+
+# The robot deployment files (launch/projector_host.launch, config/robot/, rviz/robot_host.rviz):
+# test/deploy/check_deploy_files.py loads, verifies and parses them offline; one test, plus one
+# skip per tool it lacks (systemd-analyze, desktop-file-validate).
+check_deploy_files() {
+  local report status=0 line
+  report="$(/usr/bin/python3 "$RP_ROOT/test/deploy/check_deploy_files.py" "$RP_ROOT" 2>&1)" || status=$?
+  while IFS= read -r line; do
+    case "$line" in SKIPPED\ *) skip "deploy files: ${line#SKIPPED }" ;; esac
+  done <<<"$report"
+  if [ "$status" -eq 0 ]; then
+    pass
+    rp_log "deploy files: launch/projector_host.launch, config/robot/*, rviz/robot_host.rviz check out"
+  else
+    fail "deploy files (test/deploy/check_deploy_files.py):"
+    grep -v '^SKIPPED ' <<<"$report" | sed 's/^/    /'
+  fi
+}
