@@ -8,7 +8,8 @@
   promises, every `$$NAME` a command uses is set by an Environment= line, and every `bash -c`
   script parses (`bash -n`).
 - config/robot/xorg-projector.conf: no blanking, no DPMS, modesetting; the X unit starts Xorg
-  with it and -nocursor.
+  with it and -nocursor; Xorg starts with it (the dummy driver swapped in) and its screen saver
+  timeout is 0.
 - config/robot/rviz-projector-host.desktop: `desktop-file-validate`, starts projector_host.launch.
 - rviz/robot_host.rviz: valid YAML with a ProjectedPath (Path timeout > 0) and a ProjectorCamera.
 
@@ -174,6 +175,58 @@ def check_xorg(robot_dir):
     check(re.search(r'Driver\s+"modesetting"', sections.get("Device", "")), 'xorg-projector.conf: Device driver is not "modesetting"')
 
 
+def check_xorg_starts(robot_dir):
+    """Xorg starts with xorg-projector.conf, its driver swapped for the dummy one (no graphics card
+    here), and its screen saver is off."""
+    xorg = shutil.which("Xorg")
+    if not xorg or not os.path.exists("/usr/lib/xorg/modules/drivers/dummy_drv.so"):
+        skips.append("Xorg with xorg-projector.conf: needs Xorg and xserver-xorg-video-dummy")
+        return
+    if os.geteuid() != 0:
+        skips.append("Xorg with xorg-projector.conf: needs root (Xorg -config with an absolute path)")
+        return
+    with open(os.path.join(robot_dir, "xorg-projector.conf")) as f:
+        text = f.read()
+    check('Driver     "modesetting"' in text, "xorg-projector.conf: no modesetting Driver line to swap")
+    text = text.replace('Driver     "modesetting"', 'Driver "dummy"\n    VideoRam 256000')
+    text = text.replace('Option "DPMS" "false"', 'Option "DPMS" "false"\n    HorizSync 5.0-1000.0\n    VertRefresh 5.0-200.0')
+    with tempfile.TemporaryDirectory() as work:
+        conf = os.path.join(work, "xorg-projector-dummy.conf")
+        log = os.path.join(work, "xorg.log")
+        with open(conf, "w") as f:
+            f.write(text)
+        read_end, write_end = os.pipe()
+        server = subprocess.Popen([xorg, "-displayfd", str(write_end), "-config", conf, "-nocursor", "-nolisten", "tcp",
+                                   "-noreset", "-logfile", log], pass_fds=(write_end,),
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        os.close(write_end)
+        try:
+            # Xorg writes its display number to the pipe once it accepts clients (EOF: it died).
+            with os.fdopen(read_end) as numbers:
+                number = numbers.readline().strip()
+            if not check(number.isdigit(), "Xorg did not start with xorg-projector.conf (dummy driver): %s" % tail(log)):
+                return
+            env = dict(os.environ, DISPLAY=":" + number)
+            query = subprocess.run(["xset", "-q"], env=env, capture_output=True, text=True, timeout=20)
+            check(re.search(r"timeout:\s+0\b", query.stdout),
+                  "Xorg with xorg-projector.conf: screen saver timeout is not 0: %s" % query.stdout.strip())
+        finally:
+            server.terminate()
+            try:
+                server.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                server.kill()
+                server.wait()
+
+
+def tail(path, lines=8):
+    try:
+        with open(path) as f:
+            return " | ".join(l.rstrip() for l in f.readlines()[-lines:])
+    except OSError:
+        return "(no log)"
+
+
 def check_desktop(robot_dir):
     path = os.path.join(robot_dir, "rviz-projector-host.desktop")
     with open(path) as f:
@@ -206,9 +259,9 @@ def check_robot_config(package_dir):
 def main():
     package_dir = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", ".."))
     robot_dir = os.path.join(package_dir, "config", "robot")
-    for part in (check_launch, check_units, check_xorg, check_desktop, check_robot_config):
+    for part in (check_launch, check_units, check_xorg, check_xorg_starts, check_desktop, check_robot_config):
         try:
-            part(robot_dir if part in (check_units, check_xorg, check_desktop) else package_dir)
+            part(package_dir if part in (check_launch, check_robot_config) else robot_dir)
         except Exception as e:  # a broken file must be a failure with its reason, not a traceback
             failures.append("%s: %s: %s" % (part.__name__, type(e).__name__, e))
     for line in failures:
