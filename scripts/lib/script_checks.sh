@@ -40,17 +40,28 @@ check_rosrun_no_loop() {
   fi
 }
 
-# scripts/demo --headless: exit 0, both screenshots of each shot present and not one colour, and no
-# process it started (all carry a mark in their environment, inherited from here) outlives it.
+# scripts/demo --headless [--host]: exit 0, both screenshots of each shot present and not one colour,
+# and no process it started (all carry a mark in their environment, inherited from here) outlives it.
 check_demo_headless() {
-  local out="$RP_WS/demo-check" mark pids log="$RP_WS/demo-check.log" problems=() f
+  check_demo "scripts/demo --headless" demo-check --headless -- rviz-1 projector-1 rviz-2 projector-2
+}
+check_demo_host() {
+  check_demo "scripts/demo --headless --host" demo-host-check --headless --host -- host-projector-1 host-projector-2
+}
+# check_demo LABEL NAME OPTION... -- SCREENSHOT...: runs scripts/demo with the options into
+# $RP_WS/NAME and checks the screenshots SCREENSHOT.png.
+check_demo() {
+  local label="$1" out="$RP_WS/$2" mark pids log="$RP_WS/$2.log" problems=() f options=()
+  shift 2
+  while [ "$1" != -- ]; do options+=("$1"); shift; done
+  shift
   rm -rf "$out"
   mark="rp-test-demo-$$-$(date +%s%N)"
   local started=$SECONDS status=0
   RP_TEST_DEMO_MARK="$mark" RP_WS="$RP_WS" DEMO_OUTPUT="$out" DEMO_SECONDS=0 DEMO_INTERVAL=0.5 DEMO_TIMEOUT=90 \
-    timeout -k 10 240 "$RP_ROOT/scripts/demo" --headless >"$log" 2>&1 || status=$?
+    timeout -k 10 240 "$RP_ROOT/scripts/demo" "${options[@]}" >"$log" 2>&1 || status=$?
   [ "$status" -eq 0 ] || problems+=("exit status $status")
-  for f in rviz-1 projector-1 rviz-2 projector-2; do
+  for f in "$@"; do
     if [ ! -s "$out/$f.png" ]; then
       problems+=("no $f.png")
     elif [ "$(identify -format '%k' "$out/$f.png" 2>/dev/null || echo 0)" -le 1 ]; then
@@ -73,10 +84,28 @@ check_demo_headless() {
   fi
   if [ ${#problems[@]} -eq 0 ]; then
     pass
-    rp_log "scripts/demo --headless: exit 0, 4 screenshots not blank, nothing left running ($((SECONDS - started)) s)"
+    rp_log "$label: exit 0, $# screenshots not blank, nothing left running ($((SECONDS - started)) s)"
   else
-    fail "scripts/demo --headless (log: $log):"
+    fail "$label (log: $log):"
     printf '    %s\n' "${problems[@]}"
     tail -n 8 "$log" | sed 's/^/  | /'
+  fi
+}
+
+# The robot deployment files (launch/projector_host.launch, config/robot/, rviz/robot_host.rviz):
+# test/deploy/check_deploy_files.py loads, verifies and parses them offline; one test, plus one
+# skip per tool it lacks (systemd-analyze, desktop-file-validate).
+check_deploy_files() {
+  local report status=0 line
+  report="$(/usr/bin/python3 "$RP_ROOT/test/deploy/check_deploy_files.py" "$RP_ROOT" 2>&1)" || status=$?
+  while IFS= read -r line; do
+    case "$line" in SKIPPED\ *) skip "deploy files: ${line#SKIPPED }" ;; esac
+  done <<<"$report"
+  if [ "$status" -eq 0 ]; then
+    pass
+    rp_log "deploy files: launch/projector_host.launch, config/robot/*, rviz/robot_host.rviz check out"
+  else
+    fail "deploy files (test/deploy/check_deploy_files.py):"
+    grep -v '^SKIPPED ' <<<"$report" | sed 's/^/    /'
   fi
 }
