@@ -26,7 +26,7 @@ else()
   message(STATUS "${PROJECT_NAME}: Google Benchmark not found (apt-get install libbenchmark-dev): microbenchmarks skipped")
 endif()
 
-find_package(X11 QUIET)
+# X11 (with its XShm, Xdamage, Xfixes parts) is found in CMakeLists.txt.
 if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
   #catkin_lint: ignore uninstalled_target
   add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp)

@@ -1,13 +1,9 @@
 # projector_host: the projector output of a .rviz config without rviz's GUI (issue 13).
 # Included from CMakeLists.txt after the plugin library target.
-# diagnostic_updater and std_srvs come with the package's catkin components (CMakeLists.txt).
-find_package(X11 REQUIRED)
+# diagnostic_updater and std_srvs come with the package's catkin components, X11 (the display check
+# before Qt starts) from CMakeLists.txt.
 
 add_executable(projector_host
-  include/${PROJECT_NAME}/host/host_curtain.h
-  include/${PROJECT_NAME}/host/host_diagnostics.h
-  include/${PROJECT_NAME}/host/host_file_watcher.h
-  include/${PROJECT_NAME}/host/host_session.h
   src/host/host_config.cpp
   src/host/host_curtain.cpp
   src/host/host_diagnostics.cpp

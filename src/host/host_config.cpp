@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_config.h"
+#include "host_config.h"
 
 #include <map>
 

@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_curtain.h"
+#include "host_curtain.h"
 
 #include <QCoreApplication>
 #include <QWidget>

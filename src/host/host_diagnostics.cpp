@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_diagnostics.h"
+#include "host_diagnostics.h"
 
 #include <algorithm>
 
@@ -15,8 +15,8 @@
 #include <rviz/properties/status_property.h>
 
 #include "rviz_projector/displays/projector_camera_display.h"
-#include "rviz_projector/host/host_projector_status.h"
-#include "rviz_projector/host/host_session.h"
+#include "host_projector_status.h"
+#include "host_session.h"
 
 namespace rviz_projector
 {

@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_file_watcher.h"
+#include "host_file_watcher.h"
 
 #include <QCryptographicHash>
 #include <QFile>

@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_options.h"
+#include "host_options.h"
 
 namespace rviz_projector
 {

@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_projector_status.h"
+#include "host_projector_status.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_camera_health.h"
-#include "rviz_projector/host/host_diagnostics.h"
+#include "host_diagnostics.h"
 
 namespace rviz_projector
 {

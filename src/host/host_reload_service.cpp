@@ -1,9 +1,9 @@
-#include "rviz_projector/host/host_reload_service.h"
+#include "host_reload_service.h"
 
 #include <chrono>
 #include <future>
 
-#include "rviz_projector/host/host_session.h"
+#include "host_session.h"
 
 namespace rviz_projector
 {

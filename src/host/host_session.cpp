@@ -1,4 +1,4 @@
-#include "rviz_projector/host/host_session.h"
+#include "host_session.h"
 
 #include <OgreRenderTargetListener.h>
 #include <OgreRenderWindow.h>
@@ -12,8 +12,8 @@
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
-#include "rviz_projector/host/host_config.h"
-#include "rviz_projector/host/host_curtain.h"
+#include "host_config.h"
+#include "host_curtain.h"
 
 namespace rviz_projector
 {

@@ -14,12 +14,12 @@
 #include <ros/ros.h>
 
 #include "rviz_projector/displays/host_mode.h"
-#include "rviz_projector/host/host_diagnostics.h"
-#include "rviz_projector/host/host_file_watcher.h"
-#include "rviz_projector/host/host_options.h"
-#include "rviz_projector/host/host_reload_service.h"
-#include "rviz_projector/host/host_session.h"
-#include "rviz_projector/host/x_display_check.h"
+#include "host_diagnostics.h"
+#include "host_file_watcher.h"
+#include "host_options.h"
+#include "host_reload_service.h"
+#include "host_session.h"
+#include "x_display_check.h"
 
 namespace
 {

@@ -1,4 +1,4 @@
-#include "rviz_projector/host/x_display_check.h"
+#include "x_display_check.h"
 
 #include <cstdlib>
 
