@@ -252,8 +252,12 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
   // Never full screen over rviz by accident: when Automatic ends up on rviz's own screen, or only
   // one screen exists, the window opens windowed. A screen the user named explicitly is obeyed.
   const bool named = request.screen != kAutomaticScreen && !request.screen.empty() && problem.isEmpty();
-  // projector_host has no rviz window to cover: full screen wherever the choice fell.
-  const bool shares_rviz = !hostMode() && (qt_screens.size() < 2 || (choice.shares_rviz_screen && !named));
+  // projector_host has no rviz window to cover: full screen on the only screen, when the robot has
+  // only the projector. Once several screens were seen, the primary is kept free as in rviz (a
+  // projector unplugged from a robot with a monitor: windowed on the monitor until it is back).
+  seen_several_screens_ = seen_several_screens_ || qt_screens.size() >= 2;
+  const bool shares_rviz = hostMode() ? (seen_several_screens_ && choice.shares_rviz_screen && !named) :
+                                        (qt_screens.size() < 2 || (choice.shares_rviz_screen && !named));
   const bool full_screen = request.full_screen && !shares_rviz;
   if (!window_ || window_->isFullScreenOn() != full_screen || window_->fsaa() != request.fsaa)
   {

@@ -109,6 +109,16 @@ class Pixels(object):
                 count += 1
         return count
 
+    def count_light(self, step=1, minimum=180):
+        """Pixels (every `step`-th) whose three channels are all at least `minimum`: white or light
+        grey, never one of the saturated test colours (magenta, cyan, green)."""
+        d = self.data
+        count = 0
+        for i in range(0, len(d), 4 * step):
+            if d[i] >= minimum and d[i + 1] >= minimum and d[i + 2] >= minimum:
+                count += 1
+        return count
+
     def centroid(self, indices):
         if not indices:
             return None

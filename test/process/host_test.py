@@ -15,6 +15,7 @@ The CameraInfo and tf come from host.test (launch/projector.launch).
 import os
 import shutil
 import signal
+import subprocess
 import sys
 import tempfile
 import threading
@@ -37,6 +38,10 @@ START_TIMEOUT = 40.0
 EXIT_LIMIT = 2.0
 MAGENTA = (255, 0, 255)
 CYAN = (0, 255, 255)
+
+
+def xrandr(*args):
+    subprocess.run(["xrandr"] + list(args), check=True, timeout=10)
 
 
 def make_path():
@@ -296,6 +301,105 @@ class HostTest(unittest.TestCase):
             self.assertIsNotNone(host.wait_exit(30.0), what + ": still running")
             self.assertEqual(host.returncode(), code, what + ": " + host.log_tail())
             self.assertIn(text, host.log_text(), what)
+
+    def test_projector_screen_unplugged_and_plugged_back(self):
+        if len(self.x.monitors()) < 2:
+            self.fail("needs the two-screen Xorg dummy server (scripts/test starts it), this X server has %d"
+                      % len(self.x.monitors()))
+        host, (window, _) = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
+        self.assertEqual((window["x"], window["y"], window["width"], window["height"]), (1600, 0, 1280, 800),
+                         "not full screen on the projector's screen")
+        try:
+            xrandr("--output", "DUMMY1", "--off")
+            moved = wait_for(lambda: [w for w in self.x.mapped_output_windows(host.pid)
+                                      if w["x"] + w["width"] <= 1600], 15.0, 0.1)
+            self.assertTrue(moved, "the window did not move to the remaining screen: " +
+                            describe(self.x.mapped_output_windows(host.pid)))
+            _, keys = self.latest_status("Projector", after=time.monotonic())
+            self.assertEqual(keys["Screen"], "DUMMY0", keys)
+            self.assertEqual(keys["Full screen"], "False", "full screen over the robot's other screen")
+        finally:
+            xrandr("--output", "DUMMY1", "--mode", "1280x800_60", "--right-of", "DUMMY0")
+        back = wait_for(lambda: [w for w in self.x.mapped_output_windows(host.pid)
+                                 if (w["x"], w["y"], w["width"], w["height"]) == (1600, 0, 1280, 800)], 15.0, 0.1)
+        self.assertTrue(back, "the window did not come back full screen: " +
+                        describe(self.x.mapped_output_windows(host.pid)))
+        self.assertIsNotNone(self.wait_colour(host.pid, MAGENTA), "no arrows after the screen came back")
+        self.assertTrue(host.alive())
+
+    def test_only_screen_gets_the_projector_full_screen(self):
+        # A robot whose X server drives only the projector: full screen on it (rviz would open a
+        # window there, to keep its own window visible; the host has none).
+        if len(self.x.monitors()) < 2:
+            self.fail("needs the two-screen Xorg dummy server, this X server has %d" % len(self.x.monitors()))
+        try:
+            xrandr("--output", "DUMMY1", "--off")
+            self.assertTrue(wait_for(lambda: len(self.x.monitors()) == 1, 10.0), "DUMMY1 did not go away")
+            host, (window, _) = self.start_showing(os.path.join(CONFIGS, "host.rviz"))
+            self.assertEqual((window["x"], window["y"], window["width"], window["height"]), (0, 0, 1600, 900),
+                             "not full screen on the only screen")
+            host.stop()
+        finally:
+            xrandr("--output", "DUMMY1", "--mode", "1280x800_60", "--right-of", "DUMMY0")
+            wait_for(lambda: len(self.x.monitors()) == 2, 10.0)
+
+    def test_reload_never_shows_white(self):
+        # While a reload replaces the displays, a black curtain covers the projector: sampled as
+        # fast as the X server answers, the projector's screen never shows white or light pixels
+        # beyond the arrows' own colours. The desktop behind is made white for the test, as a
+        # robot's desktop session may show a wallpaper between the old window and the new one.
+        subprocess.run(["xsetroot", "-solid", "white"], check=True, timeout=10)
+        self.addCleanup(subprocess.run, ["xsetroot", "-solid", "black"], timeout=10)
+        config = self.config_copy()
+        host, (window, _) = self.start_showing(config)
+        with open(config) as f:
+            good = f.read()
+        colours = [good, good.replace("Arrow color: 255; 0; 255", "Arrow color: 0; 255; 255")]
+        worst = [0, None]
+        stop = threading.Event()
+
+        def sample():
+            while not stop.is_set():
+                pixels = grab_window(self.x_sampler, window)
+                light = pixels.count_light(step=7)
+                if light > worst[0]:
+                    worst[0], worst[1] = light, time.monotonic()
+        self.x_sampler = XWindows()
+        sampler = threading.Thread(target=sample)
+        sampler.start()
+        try:
+            for i in range(4):
+                self.write(config, colours[(i + 1) % 2])
+                reply = self.reload()
+                self.assertTrue(reply.success, reply.message)
+        finally:
+            stop.set()
+            sampler.join()
+            self.x_sampler.close()
+        self.assertEqual(worst[0], 0, "%d light grey/white samples on the projector during reloads" % worst[0])
+
+    def test_two_projectors(self):
+        # Two ProjectorCameras, one per screen (named), both showing the path.
+        with open(os.path.join(CONFIGS, "host.rviz")) as f:
+            text = f.read()
+        start = text.index("    - Class: rviz_projector/ProjectorCamera")
+        end = text.index("  Enabled: true\n  Global Options")
+        block = text[start:end]
+        second = block.replace("Name: Projector", "Name: Second projector").replace(
+            "Output screen: Automatic", "Output screen: DUMMY0")
+        first = block.replace("Output screen: Automatic", "Output screen: DUMMY1")
+        config = os.path.join(self.tmp, "two.rviz")
+        self.write(config, text[:start] + first + second + text[end:])
+        host = self.start_host(config)
+        both = wait_for(lambda: len(self.x.mapped_output_windows(host.pid)) == 2 and
+                        self.x.mapped_output_windows(host.pid), START_TIMEOUT, 0.2)
+        self.assertTrue(both, "two output windows expected: " + describe(self.x.mapped_output_windows(host.pid)))
+
+        def both_show():
+            self.publish_path()
+            return all(grab_window(self.x, w).count_colour(MAGENTA) > 200 for w in self.x.mapped_output_windows(host.pid))
+        self.assertTrue(wait_for(both_show, 20.0, 0.2), "not both projectors show the arrows")
+        self.latest_status("Second projector")
 
     def test_missing_plugin_at_start_is_skipped(self):
         config = self.config_copy(replace={"Class: rviz/Grid": "Class: no_such_pkg/NoSuchDisplay"})

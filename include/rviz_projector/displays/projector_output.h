@@ -144,6 +144,7 @@ private:
   int window_width_ = 0;
   int window_height_ = 0;
   std::string screen_name_;  ///< screen the window is on (empty while hidden)
+  bool seen_several_screens_ = false;  ///< host mode: more than one screen was connected at some point
   QRect windowed_geometry_;
   QRect placed_geometry_;  ///< the windowed geometry last set here (anything else is the user's)
   bool repaint_requested_ = false;  ///< the user's windowed geometry, kept across full-screen toggles
