@@ -14,7 +14,9 @@
 # Run through `scripts/test --soak [--soak-minutes N]` (builds first), or directly with a built
 # workspace: RP_WS=<workspace with projector_host and demo_navigation built>.
 # Environment: SOAK_OUTPUT (folder for the logs, default $RP_WS/soak-<time>), SOAK_WARMUP_SECONDS
-# (60), SOAK_SAMPLE_SECONDS (5), SOAK_RSS_LIMIT_MB (2), SOAK_CONFIG (default rviz/demo.rviz).
+# (60), SOAK_SAMPLE_SECONDS (5), SOAK_RSS_LIMIT_MB (2), SOAK_CONFIG (default rviz/demo.rviz),
+# SOAK_HEAPTRACK=1 (run the host under heaptrack, Debian package heaptrack, to find where memory
+# grows: `heaptrack_print $SOAK_OUTPUT/heaptrack.*.zst`; RSS then includes heaptrack's own).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -90,9 +92,25 @@ done
 started+=($!)
 /usr/bin/python3 "$HERE/diagnostics_log.py" "$out/diagnostics.tsv" >"$out/diagnostics_log.log" 2>&1 &
 started+=($!)
-(cd "$out" && exec "$bin/projector_host" "$config") >"$out/host.log" 2>&1 &
+host_cmd=("$bin/projector_host" "$config")
+if [ "${SOAK_HEAPTRACK:-0}" = 1 ]; then
+  command -v heaptrack >/dev/null || { rp_log "soak: SOAK_HEAPTRACK=1 needs heaptrack (apt-get install heaptrack)"; exit 2; }
+  # --record-only: write the raw data, no analysis at the end. The host runs as a child of
+  # heaptrack's script (found below).
+  host_cmd=(heaptrack --record-only -o "$out/heaptrack" "${host_cmd[@]}")
+fi
+(cd "$out" && exec "${host_cmd[@]}") >"$out/host.log" 2>&1 &
 host_pid=$!
 started+=("$host_pid")
+if [ "${SOAK_HEAPTRACK:-0}" = 1 ]; then
+  deadline=$((SECONDS + 30))
+  until child="$(pgrep -P "$host_pid" -x projector_host)"; do
+    [ "$SECONDS" -lt "$deadline" ] || { rp_log "soak: projector_host did not start under heaptrack"; exit 1; }
+    sleep 0.2
+  done
+  host_pid="$child"
+  started+=("$host_pid")
+fi
 host_start=$SECONDS
 rp_log "soak: ${minutes} min, reload every ${reload_seconds} s, warm-up ${warmup} s, RSS every ${sample} s (logs in $out)"
 
