@@ -16,7 +16,7 @@
 # Environment: SOAK_OUTPUT (folder for the logs, default $RP_WS/soak-<time>), SOAK_WARMUP_SECONDS
 # (60), SOAK_SAMPLE_SECONDS (5), SOAK_RSS_LIMIT_MB (2), SOAK_CONFIG (default rviz/demo.rviz),
 # SOAK_HEAPTRACK=1 (run the host under heaptrack, Debian package heaptrack, to find where memory
-# grows: `heaptrack_print $SOAK_OUTPUT/heaptrack.*.zst`; RSS then includes heaptrack's own).
+# grows: `heaptrack_print -f $SOAK_OUTPUT/heaptrack.zst`; RSS then includes heaptrack's own).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -95,9 +95,8 @@ started+=($!)
 host_cmd=("$bin/projector_host" "$config")
 if [ "${SOAK_HEAPTRACK:-0}" = 1 ]; then
   command -v heaptrack >/dev/null || { rp_log "soak: SOAK_HEAPTRACK=1 needs heaptrack (apt-get install heaptrack)"; exit 2; }
-  # --record-only: write the raw data, no analysis at the end. The host runs as a child of
-  # heaptrack's script (found below).
-  host_cmd=(heaptrack --record-only -o "$out/heaptrack" "${host_cmd[@]}")
+  # The host runs as a child of heaptrack's script (found below); analyse with heaptrack_print.
+  host_cmd=(heaptrack -o "$out/heaptrack" "${host_cmd[@]}")
 fi
 (cd "$out" && exec "${host_cmd[@]}") >"$out/host.log" 2>&1 &
 host_pid=$!
