@@ -165,8 +165,8 @@ def main():
 
     print("ours = ProjectorCamera full-screen window on the projector screen; baseline = the same scene "
           "through its Image output (sensor_msgs/Image) shown 1:1 in image_view on the projector screen.")
-    print("min / median / max over the trials; ratio = median ours / median baseline. CPU in cores "
-          "(1.00 = one core busy), from /proc/<pid>/stat over each trial.")
+    print("min / median / max over the trials; ratio = median ours / median baseline (host: median host / median "
+          "ours+noaa). CPU in cores (1.00 = one core busy), from /proc/<pid>/stat over each trial.")
     warnings = []
     for title, ours, baseline in groups_of(PIPELINES):
         print()
@@ -220,8 +220,8 @@ def main():
           "MIT-SHM grabs compared pixel by pixel);")
     print("  a driving trial reads 0 while the robot stands at a goal (its plan then ends under it: the "
           "projector shows black). draws/s = drawing")
-    print("  operations reaching the rectangle, changed or not. Latency: robot stopped, a 45-pose (or "
-          "100,000-pose) path published in base_link,")
+    print("  operations reaching the rectangle, changed or not. Latency: robot stopped, a %s-pose (or "
+          "100,000-pose) path published in base_link," % poses_text)
     print("  timed from just before publish() to the damage event of the first changed grab. host = projector_host "
           "(bench/e2e/host.rviz: the ours scene, projector Anti-aliasing on).")
     if warnings:
