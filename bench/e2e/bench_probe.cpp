@@ -8,6 +8,7 @@
 //   idle         robot stopped (demo_navigation SIGSTOPped), same plan: frames/s and CPU
 //   latency      robot stopped: publish a changed path (in view of the projector), time until the
 //                first changed pixel in the window; the path alternates between two variants
+//                (--latency-poses poses, 100 by default)
 //   latency100k  the same with a 100,000-pose path (about 10,000 arrows)
 //   drive10k     robot driving with a 100,000-pose path of ~10,000 arrows laid over its circuit
 //
@@ -18,7 +19,9 @@
 // damage event arrived. --poll-ms N instead grabs every N ms (no XDamage needed, more CPU).
 //
 // Output: one line per measurement, tab separated: pipeline, phase, trial, metric, value. CPU is
-// in cores (1.0 = one core busy) from /proc/<pid>/stat utime+stime over the trial.
+// in cores (1.0 = one core busy) from /proc/<pid>/stat utime+stime over the trial. Memory: the
+// resident set size (VmRSS of /proc/<pid>/status) of every process after the first frame (phase
+// memory_start) and after the last phase (memory_end).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -88,6 +91,7 @@ struct Options
   std::vector<std::string> phases{"drive", "idle", "latency", "latency100k", "drive10k"};
   int trials = 20;
   int latency_trials = 25;
+  int latency_poses = 100;
   double trial_seconds = 1.0;
   double warmup_seconds = 3.0;
   double poll_ms = 0.0;  // 0: XDamage-driven grabs
@@ -153,6 +157,7 @@ Options parseOptions(int argc, char** argv)
     else if (a == "--phases") o.phases = split(value(), ',');
     else if (a == "--trials") o.trials = std::stoi(value());
     else if (a == "--latency-trials") o.latency_trials = std::stoi(value());
+    else if (a == "--latency-poses") o.latency_poses = std::stoi(value());
     else if (a == "--trial-seconds") o.trial_seconds = std::stod(value());
     else if (a == "--warmup-seconds") o.warmup_seconds = std::stod(value());
     else if (a == "--poll-ms") o.poll_ms = std::stod(value());
@@ -162,6 +167,7 @@ Options parseOptions(int argc, char** argv)
     else fail("unknown option " + a);
   }
   if (o.window.empty()) fail("--window TITLE is required");
+  if (o.latency_poses < 2) fail("--latency-poses N: at least 2");
   return o;
 }
 
@@ -194,6 +200,21 @@ long long cpuTicks(pid_t pid)
     }
   }
   return utime + stime;
+}
+
+/// Resident set size of a process in MB (VmRSS of /proc/<pid>/status), NaN when it is gone.
+double rssMegabytes(pid_t pid)
+{
+  std::ifstream in("/proc/" + (pid == 0 ? std::string("self") : std::to_string(pid)) + "/status");
+  std::string line;
+  while (std::getline(in, line))
+  {
+    if (line.rfind("VmRSS:", 0) == 0)
+    {
+      return std::stod(line.substr(6)) / 1024.0;  // kB
+    }
+  }
+  return NAN;
 }
 
 /// utime + stime of every thread of a process, by thread group: "main" (the thread that runs Qt and
@@ -721,16 +742,19 @@ public:
     {
       fail("the window never changed: is the scene moving?");
     }
+    emitMemory("memory_start");
+    emit("setup", 0, "latency_poses", o_.latency_poses);
     for (const std::string& phase : o_.phases)
     {
       if (phase == "drive") drive("drive");
       else if (phase == "idle") idle();
-      else if (phase == "latency") latency("latency", 45);
+      else if (phase == "latency") latency("latency", static_cast<std::size_t>(o_.latency_poses));
       else if (phase == "latency100k") latency("latency100k", 100000);
       else if (phase == "drive10k") drive10k();
       else fail("unknown phase " + phase);
     }
     resumeDemo();
+    emitMemory("memory_end");
     if (o_.place_image)
     {
       checkOnTop();
@@ -750,6 +774,17 @@ private:
     else
     {
       std::fputs(line, stdout);
+    }
+  }
+
+  void emitMemory(const std::string& phase)
+  {
+    for (const auto& p : cpu_.pids())
+    {
+      if (p.first != "probe")
+      {
+        emit(phase, 0, "rss_mb." + p.first, rssMegabytes(p.second));
+      }
     }
   }
 

@@ -20,6 +20,10 @@ RVIZ_CPU = [
     ("cpu.rviz.main", "    main thread (Qt, rviz update, OGRE)", "%.2f"),
     ("cpu.rviz.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
     ("cpu.rviz.other", "    other threads (ROS, tf)", "%.2f"),
+    ("cpu.host", "  projector_host", "%.2f"),
+    ("cpu.host.main", "    main thread (Qt, display updates, OGRE)", "%.2f"),
+    ("cpu.host.llvmpipe", "    llvmpipe rasterizer threads", "%.2f"),
+    ("cpu.host.other", "    other threads (ROS, tf)", "%.2f"),
     ("cpu.image_view", "  image_view", "%.2f"),
 ]
 MACHINE_LOAD = [
@@ -45,7 +49,7 @@ SECTIONS = [
         ("cpu.xorg", "  X server", "%.3f"),
     ] + MACHINE_LOAD),
     ("Path to photon (new path -> first changed pixel of the output window)", None, [
-        ("latency:latency_ms", "45-pose path [ms]", "%.1f"),
+        ("latency:latency_ms", "{poses}-pose path [ms]", "%.1f"),
         ("latency100k:latency_ms", "100,000-pose path [ms]", "%.1f"),
         ("latency:latency_timeout", "  trials without a change within 5 s", "%d"),
     ]),
@@ -55,7 +59,18 @@ SECTIONS = [
         ("cpu.rviz", "  rviz", "%.2f"),
         ("cpu.rviz.main", "    main thread", "%.2f"),
         ("cpu.rviz.llvmpipe", "    llvmpipe threads", "%.2f"),
+        ("cpu.host", "  projector_host", "%.2f"),
+        ("cpu.host.main", "    main thread", "%.2f"),
+        ("cpu.host.llvmpipe", "    llvmpipe threads", "%.2f"),
     ] + MACHINE_LOAD),
+    ("Memory: resident set size (VmRSS) [MB], after the first frame -> after the last phase", None, [
+        ("memory_start:rss_mb.rviz", "rviz at start", "%.1f"),
+        ("memory_end:rss_mb.rviz", "rviz at the end", "%.1f"),
+        ("memory_start:rss_mb.host", "projector_host at start", "%.1f"),
+        ("memory_end:rss_mb.host", "projector_host at the end", "%.1f"),
+        ("memory_start:rss_mb.image_view", "image_view at start", "%.1f"),
+        ("memory_end:rss_mb.image_view", "image_view at the end", "%.1f"),
+    ]),
 ]
 
 
@@ -96,11 +111,23 @@ CONFIGURATIONS = {
 }
 
 
+HOST_REFERENCE = "ours+noaa"
+
+
 def groups_of(pipelines):
-    """[(title, ours, baseline)]: ours<suffix> with baseline<suffix>; anything else on its own."""
+    """[(title, ours, baseline)]: ours<suffix> with baseline<suffix>; host* (projector_host) with
+    rviz --disable-anti-aliasing + ProjectorCamera (issue 13's reference); anything else on its own."""
     groups = collections.OrderedDict()
     for p in pipelines:
         base, _, suffix = p.partition("+")
+        if base.startswith("host"):
+            reference = HOST_REFERENCE if HOST_REFERENCE in pipelines else None
+            groups[("host", p)] = {
+                "title": "projector_host (no rviz GUI; %s) vs %s" % (
+                    "projector Anti-aliasing off" if "aaoff" in p else "projector Anti-aliasing on",
+                    "rviz --disable-anti-aliasing + ProjectorCamera" if reference else "nothing (no ours+noaa run)"),
+                "ours": p, "baseline": reference}
+            continue
         if base in ("ours", "baseline"):
             key = ("pair", suffix)
             title = CONFIGURATIONS.get(suffix, "rviz with +" + suffix)
@@ -132,10 +159,14 @@ def main():
             return (sum(values or []),) * 3 + (trials,) if trials else None
         return stats(values) if values else None
 
+    poses = [get(p, "setup", "latency_poses") for p in PIPELINES]
+    poses = {int(v[1]) for v in poses if v}
+    poses_text = "/".join(str(n) for n in sorted(poses)) if poses else "45"  # older probes: 45
+
     print("ours = ProjectorCamera full-screen window on the projector screen; baseline = the same scene "
           "through its Image output (sensor_msgs/Image) shown 1:1 in image_view on the projector screen.")
-    print("min / median / max over the trials; ratio = median ours / median baseline. CPU in cores "
-          "(1.00 = one core busy), from /proc/<pid>/stat over each trial.")
+    print("min / median / max over the trials; ratio = median ours / median baseline (host: median host / median "
+          "ours+noaa). CPU in cores (1.00 = one core busy), from /proc/<pid>/stat over each trial.")
     warnings = []
     for title, ours, baseline in groups_of(PIPELINES):
         print()
@@ -162,7 +193,7 @@ def main():
                 if comparable and cells[0] and cells[1] and cells[1][1] > 0:
                     ratio = "%.2f" % (cells[0][1] / cells[1][1])
                 n = "/".join(sorted({str(c[3]) for c in cells if c}))
-                rows.append((label, cell(cells[0], fmt), cell(cells[1], fmt), ratio, n))
+                rows.append((label.format(poses=poses_text), cell(cells[0], fmt), cell(cells[1], fmt), ratio, n))
         header = ("", "%s: min / median / max" % (ours or "-"), "%s: min / median / max" % (baseline or "-"),
                   "ratio", "trials")
         body = [r for r in rows if len(r) > 1]
@@ -174,7 +205,9 @@ def main():
                 print(row[0])
                 continue
             print("  ".join("{:<{}}".format(c, w) for c, w in zip(row, widths)).rstrip())
-        if ours:
+        if ours and ours.startswith("host"):
+            print_host_targets(get, ours, baseline)
+        elif ours:
             print_targets(get, ours, baseline)
         for metric, what in (("cpu.others", "other processes used"), ("cpu.steal", "the hypervisor stole")):
             values = [get(p, ph, metric) for p in (ours, baseline) for ph in ("drive", "idle", "drive10k")]
@@ -187,9 +220,10 @@ def main():
           "MIT-SHM grabs compared pixel by pixel);")
     print("  a driving trial reads 0 while the robot stands at a goal (its plan then ends under it: the "
           "projector shows black). draws/s = drawing")
-    print("  operations reaching the rectangle, changed or not. Latency: robot stopped, a 45-pose (or "
-          "100,000-pose) path published in base_link,")
-    print("  timed from just before publish() to the damage event of the first changed grab.")
+    print("  operations reaching the rectangle, changed or not. Latency: robot stopped, a %s-pose (or "
+          "100,000-pose) path published in base_link," % poses_text)
+    print("  timed from just before publish() to the damage event of the first changed grab. host = projector_host "
+          "(bench/e2e/host.rviz: the ours scene, projector Anti-aliasing on).")
     if warnings:
         print()
         print("WARNING: the machine was not idle, figures are pessimistic:")
@@ -230,6 +264,46 @@ def print_targets(get, ours, baseline):
                        "PASS" if ratio <= limit else "FAIL"))
     print()
     print("Targets (issue 5) for %s" % ours)
+    w = max(len(c[0]) for c in checks)
+    for text, value, verdict in checks:
+        print("  {:<{}}  {:<4}  {}".format(text, w, verdict, value))
+
+
+# Issue 13's targets for projector_host, same shapes as TARGETS / CPU_TARGETS; the CPU ratio is
+# against rviz --disable-anti-aliasing + ProjectorCamera (ours+noaa) in the same run.
+HOST_TARGETS = [
+    ("driving: >= 58 frames/s delivered (Anti-aliasing on)", "drive", "fps", 1, "%.1f /s", lambda v: v >= 58),
+    ("latency median <= 12 ms", "latency", "latency_ms", 1, "%.1f ms", lambda v: v <= 12),
+    ("latency max <= 25 ms", "latency", "latency_ms", 2, "%.1f ms", lambda v: v <= 25),
+    ("latency, 100,000-pose path, median <= 30 ms", "latency100k", "latency_ms", 1, "%.1f ms", lambda v: v <= 30),
+    ("nothing changing: CPU <= 0.05 core", "idle", "cpu.total_gui", 1, "%.3f cores", lambda v: v <= 0.05),
+    ("driving: CPU <= 0.35 core", "drive", "cpu.total_gui", 1, "%.2f cores", lambda v: v <= 0.35),
+]
+HOST_CPU_TARGETS = [
+    ("driving: CPU <= 0.75 x rviz --disable-anti-aliasing + ProjectorCamera", "drive", 0.75),
+]
+
+
+def print_host_targets(get, host, reference):
+    """Issue 13's targets. CPU = the projector_host process (the reference: the rviz process)."""
+    checks = []
+    for text, phase, metric, statistic, fmt, met in HOST_TARGETS:
+        if metric == "cpu.total_gui":
+            metric = "cpu.host"
+        s = get(host, phase, metric)
+        value = None if s is None else s[statistic]
+        checks.append((text, "n/a" if value is None else fmt % value,
+                       "-" if value is None else ("PASS" if met(value) else "FAIL")))
+    for text, phase, limit in HOST_CPU_TARGETS:
+        host_cpu, ref_cpu = get(host, phase, "cpu.host"), get(reference, phase, "cpu.rviz")
+        if host_cpu is None or ref_cpu is None or ref_cpu[1] <= 0:
+            checks.append((text, "n/a (needs %s in the same run)" % HOST_REFERENCE, "-"))
+            continue
+        ratio = host_cpu[1] / ref_cpu[1]
+        checks.append((text, "%.2f vs %.2f cores (%.2fx)" % (host_cpu[1], ref_cpu[1], ratio),
+                       "PASS" if ratio <= limit else "FAIL"))
+    print()
+    print("Targets (issue 13) for %s (CPU: the projector_host process vs the rviz process)" % host)
     w = max(len(c[0]) for c in checks)
     for text, value, verdict in checks:
         print("  {:<{}}  {:<4}  {}".format(text, w, verdict, value))
