@@ -235,9 +235,9 @@ bool ProjectionGate::needsFrame(const FrameState& requested)
   bool every_tick = showsForeignDisplays();
   if (every_tick && hostMode())
   {
-    // projector_host: other packages' displays are seen through their scene graph and their render
-    // requests (counted in state.changes); a keep-alive frame catches content changed in place.
-    state.foreign_scene = foreignSceneSignature();
+    // projector_host: other packages' displays are seen through their scene graph and the render
+    // requests of all displays; a keep-alive frame catches content changed in place.
+    state.foreign_scene = foreignSceneSignature() ^ (hostRenderRequests() * 0x9e3779b97f4a7c15ull);
     every_tick = !since_last_frame_.isValid() || since_last_frame_.elapsed() >= kHostKeepAliveSeconds * 1000.0;
   }
   if (have_last_ && state == last_ && !every_tick)

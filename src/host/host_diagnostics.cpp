@@ -131,14 +131,14 @@ void HostDiagnostics::rebuild()
     updater_.removeByName(name);
   }
   task_names_.clear();
-  task_names_.push_back("projector_host: config");
+  task_names_.push_back("config");
   updater_.add(task_names_.back(), this, &HostDiagnostics::configStatus);
-  task_names_.push_back("projector_host: displays");
+  task_names_.push_back("displays");
   updater_.add(task_names_.back(), this, &HostDiagnostics::displaysStatus);
   for (ProjectorCameraDisplay* projector : session_.projectors())
   {
     QPointer<ProjectorCameraDisplay> watched(projector);
-    task_names_.push_back("projector_host: " + projector->getName().toStdString());
+    task_names_.push_back(projector->getName().toStdString());
     updater_.add(task_names_.back(), [watched](diagnostic_updater::DiagnosticStatusWrapper& status) {
       if (!watched)
       {

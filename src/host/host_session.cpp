@@ -8,8 +8,10 @@
 #include <rviz/view_controller.h>
 #include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
-#include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/host_mode.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "host_config.h"
@@ -19,12 +21,16 @@ namespace rviz_projector
 {
 namespace
 {
+/// How much tf history the host keeps (rviz: 10 minutes). Messages older than this cannot be
+/// transformed into the fixed frame (a plan stamped more than 30 s ago): README, Running on the robot.
+constexpr double kTfCacheSeconds = 30.0;
+
 /// Longest the reload curtain stays up waiting for the new projectors' first frames.
 constexpr double kCurtainTimeoutSeconds = 2.0;
 
 /// rviz's manager, with every display's render request counted for the projectors
-/// (ProjectionChangeCounter): in projector_host that is how a ProjectorCamera learns that a display
-/// of another package changed (host_mode.h).
+/// (countHostRenderRequest): in projector_host that is how a ProjectorCamera that shows displays of
+/// other packages learns that one of them changed (host_mode.h).
 class HostVisualizationManager : public rviz::VisualizationManager
 {
 public:
@@ -32,7 +38,7 @@ public:
   void queueRender() override
   {
     rviz::VisualizationManager::queueRender();
-    ProjectionChangeCounter::bump();
+    countHostRenderRequest();
   }
 };
 
@@ -85,7 +91,11 @@ HostSession::HostSession(const QString& config_path) : path_(config_path), curta
   // The main view's panel exists because rviz's manager needs one (view controller, tools); it is
   // never shown and its render window never rendered: rviz's update renders active targets only.
   panel_ = new rviz::RenderPanel();
-  manager_ = new HostVisualizationManager(panel_);
+  // rviz keeps 10 minutes of tf by default, a steady growth (~0.6 MB a minute with a moving robot
+  // at 50 Hz) for a history nobody looks at here; displays transform recent messages.
+  auto tf_buffer = std::make_shared<tf2_ros::Buffer>(ros::Duration(kTfCacheSeconds));
+  auto tf_listener = std::make_shared<tf2_ros::TransformListener>(*tf_buffer, ros::NodeHandle(), true);
+  manager_ = new HostVisualizationManager(panel_, nullptr, tf_buffer, tf_listener);
   panel_->initialize(manager_->getSceneManager(), manager_);
   manager_->initialize();
   main_view_counter_ = std::make_unique<FrameCounter>();

@@ -3,6 +3,8 @@
 // made a difference; projector_host sets it once, before it creates any display.
 #pragma once
 
+#include <cstdint>
+
 namespace rviz_projector
 {
 /// What changes in host mode:
@@ -14,6 +16,12 @@ namespace rviz_projector
 ///   that change their content without either.
 void setHostMode(bool enabled);
 bool hostMode();
+
+/// projector_host counts here every render request of any display (rviz's queueRender()). A
+/// projector takes it into account only while it shows displays of other packages: requests of
+/// displays it does not show (rviz's TF display asks on every update) must not cost frames.
+void countHostRenderRequest();
+std::uint64_t hostRenderRequests();
 
 /// In host mode, the longest a projector showing displays of other packages goes without a frame.
 constexpr double kHostKeepAliveSeconds = 1.0;

@@ -33,7 +33,7 @@ struct FrameState
   std::uint64_t visibility = 0;  ///< ProjectionGate::visibilitySignature()
   PixelRect image;               ///< where the image is drawn in the window
   bool drawable = false;         ///< lens and pose available
-  std::uint64_t foreign_scene = 0;  ///< host mode: ProjectionGate::foreignSceneSignature() (set by the gate)
+  std::uint64_t foreign_scene = 0;  ///< host mode: foreign scene graphs and render requests (set by the gate)
   bool operator==(const FrameState& o) const;
 };
 
