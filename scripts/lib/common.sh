@@ -34,7 +34,7 @@ rp_packages() {
       libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
       librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic python3-rosservice
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
-      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev python3-nav-msgs python3-sensor-msgs python3-rviz
+      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev python3-nav-msgs python3-sensor-msgs python3-rviz python3-visualization-msgs
       libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs"
   fi
 }

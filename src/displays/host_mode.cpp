@@ -9,22 +9,22 @@ namespace
 // One definition in the plugin library: projector_host links this library, and pluginlib loads the
 // same file, so both see this flag.
 std::atomic<bool> host_mode{false};
-std::atomic<std::uint64_t> render_requests{0};
+std::atomic<double> keep_alive{kHostKeepAliveSeconds};
 }  // namespace
-
-void countHostRenderRequest()
-{
-  render_requests.fetch_add(1, std::memory_order_relaxed);
-}
-
-std::uint64_t hostRenderRequests()
-{
-  return render_requests.load(std::memory_order_relaxed);
-}
 
 void setHostMode(bool enabled)
 {
   host_mode.store(enabled, std::memory_order_relaxed);
+}
+
+void setHostKeepAliveSeconds(double seconds)
+{
+  keep_alive.store(seconds > 0.0 ? seconds : 0.0, std::memory_order_relaxed);
+}
+
+double hostKeepAliveSeconds()
+{
+  return keep_alive.load(std::memory_order_relaxed);
 }
 
 bool hostMode()

@@ -16,7 +16,7 @@
 #include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
-#include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -141,14 +141,14 @@ void ProjectedPathDisplay::onEnable()
 {
   MFDClass::onEnable();
   scene_node_->setVisible(true);
-  ProjectionChangeCounter::bump();
+  ProjectionChangeNotifier::notify();
 }
 
 void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
   scene_node_->setVisible(false);
-  ProjectionChangeCounter::bump();
+  ProjectionChangeNotifier::notify();
 }
 
 void ProjectedPathDisplay::reset()
@@ -166,7 +166,7 @@ void ProjectedPathDisplay::reset()
   {
     arrow_mesh_->clear();
     circle_mesh_->clear();
-    ProjectionChangeCounter::bump();
+    ProjectionChangeNotifier::notify();
   }
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
   // rviz's Reset: subscribe again, so that a latched plan comes back by itself.
@@ -293,7 +293,7 @@ void ProjectedPathDisplay::checkPathTimeout()
   deleteStatus("Style");
   setStatus(rviz::StatusProperty::Warn, "Path",
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
-  ProjectionChangeCounter::bump();
+  ProjectionChangeNotifier::notify();
   context_->queueRender();
 }
 
@@ -402,7 +402,7 @@ void ProjectedPathDisplay::redraw()
   }
   circle_mesh_->setFlatTriangles(triangles_.destination(), height, circle_colour);
   ++mesh_builds_;
-  ProjectionChangeCounter::bump();
+  ProjectionChangeNotifier::notify();
   context_->queueRender();
 }
 

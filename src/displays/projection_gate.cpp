@@ -235,10 +235,11 @@ bool ProjectionGate::needsFrame(const FrameState& requested)
   bool every_tick = showsForeignDisplays();
   if (every_tick && hostMode())
   {
-    // projector_host: other packages' displays are seen through their scene graph and the render
-    // requests of all displays; a keep-alive frame catches content changed in place.
-    state.foreign_scene = foreignSceneSignature() ^ (hostRenderRequests() * 0x9e3779b97f4a7c15ull);
-    every_tick = !since_last_frame_.isValid() || since_last_frame_.elapsed() >= kHostKeepAliveSeconds * 1000.0;
+    // projector_host: other packages' displays are seen through their scene graph; a keep-alive
+    // frame catches content they change in place (colours, a texture).
+    state.foreign_scene = foreignSceneSignature();
+    const double keep_alive = hostKeepAliveSeconds();
+    every_tick = keep_alive > 0.0 && (!since_last_frame_.isValid() || since_last_frame_.elapsed() >= keep_alive * 1000.0);
   }
   if (have_last_ && state == last_ && !every_tick)
   {

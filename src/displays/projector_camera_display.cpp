@@ -27,6 +27,7 @@
 
 #include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/projection_gate.h"
 #include "rviz_projector/displays/projector_crosshairs.h"
 #include "rviz_projector/displays/projector_floor_overlay.h"
@@ -102,6 +103,8 @@ void ProjectorCameraDisplay::onInitialize()
   frame_timer_.setSingleShot(true);
   frame_timer_.setTimerType(Qt::PreciseTimer);
   connect(&frame_timer_, SIGNAL(timeout()), this, SLOT(onFrameTimer()));
+  connect(&ProjectionChangeNotifier::instance(), &ProjectionChangeNotifier::changed, this,
+          &ProjectorCameraDisplay::onSceneChanged, Qt::QueuedConnection);
   clock_.start();
   updateFrameRate();
   applyProjection();
@@ -522,6 +525,17 @@ void ProjectorCameraDisplay::onFrameTimer()
   {
     const double delay = pacer_.tick(static_cast<double>(clock_.nsecsElapsed()) * 1e-9);
     frame_timer_.start(static_cast<int>(std::ceil(delay * 1000.0)));
+  }
+}
+
+void ProjectorCameraDisplay::onSceneChanged()
+{
+  // A frame now rather than at the next deadline, unless one went out less than a period ago (the
+  // Frame rate limit holds: early frames only replace deadlines that rendered nothing).
+  const double now = static_cast<double>(clock_.nsecsElapsed()) * 1e-9;
+  if (isEnabled() && frame_timer_.isActive() && rate_meter_.sinceLastFrame(now) >= pacer_.period())
+  {
+    frame_timer_.start(0);
   }
 }
 

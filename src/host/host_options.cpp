@@ -1,13 +1,37 @@
 #include "host_options.h"
 
+#include <cmath>
+#include <stdexcept>
+
 namespace rviz_projector
 {
 HostOptionsResult parseHostOptions(const std::vector<std::string>& args)
 {
   HostOptionsResult result;
-  for (const std::string& arg : args)
+  for (std::size_t i = 0; i < args.size(); ++i)
   {
-    if (arg == "-h" || arg == "--help")
+    const std::string& arg = args[i];
+    if (arg == "--keep-alive")
+    {
+      std::size_t used = 0;
+      double seconds = -1.0;
+      try
+      {
+        seconds = i + 1 < args.size() ? std::stod(args[i + 1], &used) : -1.0;
+      }
+      catch (const std::exception&)
+      {
+        used = 0;
+      }
+      if (i + 1 >= args.size() || used != args[i + 1].size() || !std::isfinite(seconds) || seconds < 0.0)
+      {
+        result.error = "--keep-alive needs a number of seconds >= 0";
+        return result;
+      }
+      result.options.keep_alive = seconds;
+      ++i;
+    }
+    else if (arg == "-h" || arg == "--help")
     {
       result.help = true;
     }
@@ -39,12 +63,14 @@ HostOptionsResult parseHostOptions(const std::vector<std::string>& args)
 
 std::string hostUsage()
 {
-  return "usage: rosrun rviz_projector projector_host [--watch] CONFIG.rviz\n"
+  return "usage: rosrun rviz_projector projector_host [--watch] [--keep-alive SECONDS] CONFIG.rviz\n"
          "\n"
          "Shows the output window of every ProjectorCamera in CONFIG.rviz (a config saved from rviz),\n"
          "with all its displays, but without rviz's main window and without rendering a main view.\n"
          "\n"
          "  --watch, -w   reload when CONFIG.rviz changes (as 'rosservice call ~reload' does)\n"
+         "  --keep-alive SECONDS   while a projector shows displays of other packages, render at least\n"
+         "                this often (default 1; 0: only when their scene graph changes)\n"
          "  --help, -h    this text\n"
          "\n"
          "Services: ~reload (std_srvs/Trigger). Diagnostics on /diagnostics.\n"

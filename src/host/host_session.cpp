@@ -5,13 +5,10 @@
 #include <rviz/display.h>
 #include <rviz/display_group.h>
 #include <rviz/render_panel.h>
-#include <rviz/view_controller.h>
-#include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
-#include "rviz_projector/displays/host_mode.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "host_config.h"
@@ -28,41 +25,6 @@ constexpr double kTfCacheSeconds = 30.0;
 /// Longest the reload curtain stays up waiting for the new projectors' first frames.
 constexpr double kCurtainTimeoutSeconds = 2.0;
 
-/// rviz's manager, with every display's render request counted for the projectors
-/// (countHostRenderRequest): in projector_host that is how a ProjectorCamera that shows displays of
-/// other packages learns that one of them changed (host_mode.h).
-class HostVisualizationManager : public rviz::VisualizationManager
-{
-public:
-  using rviz::VisualizationManager::VisualizationManager;
-  void queueRender() override
-  {
-    rviz::VisualizationManager::queueRender();
-    countHostRenderRequest();
-  }
-};
-
-/// A frame name that no tf tree has: the main view's controller follows it.
-constexpr const char* kNoFrame = "projector_host/no_main_view";
-
-/// rviz's view controllers follow their Target Frame and ask for a render on every update while
-/// they find it; in the host nobody looks at the main view, and those requests would make every
-/// projector render every frame (they count as scene changes, see HostVisualizationManager).
-void parkMainView(rviz::ViewManager* views)
-{
-  rviz::ViewController* view = views ? views->getCurrent() : nullptr;
-  if (view == nullptr)
-  {
-    return;
-  }
-  for (int i = 0; i < view->numChildren(); ++i)
-  {
-    if (view->childAt(i)->getName() == "Target Frame")
-    {
-      view->childAt(i)->setValue(QString(kNoFrame));
-    }
-  }
-}
 
 /// Counts the frames rendered into a render target.
 class FrameCounter : public Ogre::RenderTargetListener
@@ -95,7 +57,7 @@ HostSession::HostSession(const QString& config_path) : path_(config_path), curta
   // at 50 Hz) for a history nobody looks at here; displays transform recent messages.
   auto tf_buffer = std::make_shared<tf2_ros::Buffer>(ros::Duration(kTfCacheSeconds));
   auto tf_listener = std::make_shared<tf2_ros::TransformListener>(*tf_buffer, ros::NodeHandle(), true);
-  manager_ = new HostVisualizationManager(panel_, nullptr, tf_buffer, tf_listener);
+  manager_ = new rviz::VisualizationManager(panel_, nullptr, tf_buffer, tf_listener);
   panel_->initialize(manager_->getSceneManager(), manager_);
   manager_->initialize();
   main_view_counter_ = std::make_unique<FrameCounter>();
@@ -149,7 +111,6 @@ HostLoadResult HostSession::load(bool first)
   }
   curtain_->cover(shown);
   manager_->load(check.manager_config);
-  parkMainView(manager_->getViewManager());
   ++generation_;
   const std::vector<ProjectorCameraDisplay*> now = projectors();
   std::vector<QPointer<ProjectorCameraDisplay>> watched(now.begin(), now.end());

@@ -110,6 +110,7 @@ int main(int argc, char** argv)
   ros_watch.start(100);
 
   setHostMode(true);
+  setHostKeepAliveSeconds(parsed.options.keep_alive);
   const QString config = QString::fromStdString(parsed.options.config);
   int status = kHostExitOk;
   {

@@ -159,5 +159,14 @@ TEST(HostOptions, ParsesTheCommandLine)
   EXPECT_EQ(parseHostOptions({}).error, "no config file given");
   EXPECT_EQ(parseHostOptions({"--fast", "a.rviz"}).error, "unknown option '--fast'");
   EXPECT_NE(parseHostOptions({"a.rviz", "b.rviz"}).error.find("more than one config"), std::string::npos);
+  EXPECT_EQ(parseHostOptions({"a.rviz"}).options.keep_alive, 1.0);
+  EXPECT_EQ(parseHostOptions({"--keep-alive", "0", "a.rviz"}).options.keep_alive, 0.0);
+  EXPECT_EQ(parseHostOptions({"--keep-alive", "2.5", "a.rviz"}).options.keep_alive, 2.5);
+  for (const char* bad : {"-1", "x", "1s", "nan", "inf"})
+  {
+    EXPECT_EQ(parseHostOptions({"--keep-alive", bad, "a.rviz"}).error, "--keep-alive needs a number of seconds >= 0")
+        << bad;
+  }
+  EXPECT_NE(parseHostOptions({"a.rviz", "--keep-alive"}).error, "");
 }
 }  // namespace

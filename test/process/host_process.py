@@ -119,6 +119,19 @@ class Pixels(object):
                 count += 1
         return count
 
+    def reddish(self, step=2):
+        """Indices of red pixels (a lit red marker: red high, green and blue low), every `step`-th
+        row and column."""
+        d = self.data
+        out = []
+        for py in range(0, self.height, step):
+            row = py * self.width
+            for px in range(0, self.width, step):
+                i = 4 * (row + px)
+                if d[i + 2] > 120 and d[i + 1] < 60 and d[i] < 60:
+                    out.append(row + px)
+        return out
+
     def centroid(self, indices):
         if not indices:
             return None

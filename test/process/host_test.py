@@ -27,6 +27,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from host_process import HostProcess, grab_window  # noqa: E402
@@ -273,8 +274,42 @@ class HostTest(unittest.TestCase):
         # to this package; the host sees its render requests and scene graph, plus a 1 s keep-alive.
         config = self.config_copy(replace={"      Frame rate limit: 30\n": "      Frame rate limit: 30\n"
                                            "      Visibility:\n        Marker: true\n        Projected path: true\n"
-                                           "        Grid: false\n        Value: true\n"})
+                                           "        Grid: false\n        TF: false\n        Value: true\n"})
         self.check_renders_only_on_change(config, 5)
+
+    def test_projected_rviz_marker_follows(self):
+        # rviz's Marker display ticked in the projector: a moved marker moves on the floor. With
+        # the keep-alive frames off, only the host's view of the marker's scene graph can do it.
+        config = self.config_copy(replace={"      Frame rate limit: 30\n": "      Frame rate limit: 30\n"
+                                           "      Visibility:\n        Marker: true\n        Projected path: true\n"
+                                           "        Grid: false\n        TF: false\n        Value: true\n"})
+        host, (window, _) = self.start_showing(config, args=("--keep-alive", "0"))
+        markers = rospy.Publisher("/host_test/marker", Marker, queue_size=10, latch=True)
+
+        def publish(y):
+            m = Marker()
+            m.header.frame_id = "map"
+            m.ns, m.id, m.type, m.action = "host_test", 1, Marker.CUBE, Marker.ADD
+            m.pose.position.x, m.pose.position.y = 1.0, y
+            m.pose.orientation.w = 1.0
+            m.scale.x = m.scale.y = m.scale.z = 0.15
+            m.color.r, m.color.a = 1.0, 1.0
+            markers.publish(m)
+
+        def centroid_when(y, condition):
+            def check():
+                publish(y)
+                pixels = grab_window(self.x, window)
+                red = pixels.reddish()
+                if len(red) < 20:
+                    return None
+                c = pixels.centroid(red)
+                return c if condition(c) else None
+            return wait_for(check, 20.0, 0.2)
+        first = centroid_when(-0.15, lambda c: True)
+        self.assertIsNotNone(first, "the projected marker never showed")
+        moved = centroid_when(0.15, lambda c: abs(c[0] - first[0]) > 20)
+        self.assertIsNotNone(moved, "the projected marker did not move on the floor")
 
     def test_signals_end_it_and_the_floor_goes_dark(self):
         for sig in (signal.SIGINT, signal.SIGTERM):

@@ -3,26 +3,22 @@
 // made a difference; projector_host sets it once, before it creates any display.
 #pragma once
 
-#include <cstdint>
-
 namespace rviz_projector
 {
 /// What changes in host mode:
 /// - the projector window may go full screen on the only screen (there is no rviz window to cover);
 /// - the "Main view" cost warning is never raised (no main view is rendered);
-/// - a ProjectorCamera that shows displays of other packages renders only when their scene changed
-///   (projector_host counts every display's render request and the ProjectionGate compares the
-///   scene graph of those displays), plus a keep-alive frame (kHostKeepAliveSeconds) for displays
-///   that change their content without either.
+/// - a ProjectorCamera that shows displays of other packages renders only when their scene graph
+///   changed (node poses, visibility, bounds: scene_signature.h), plus a keep-alive frame
+///   (hostKeepAliveSeconds()) for content they change in place. rviz's render requests
+///   (queueRender) cannot serve: they do not say which display asks, and some ask on every update
+///   (the TF display, every view controller).
 void setHostMode(bool enabled);
 bool hostMode();
 
-/// projector_host counts here every render request of any display (rviz's queueRender()). A
-/// projector takes it into account only while it shows displays of other packages: requests of
-/// displays it does not show (rviz's TF display asks on every update) must not cost frames.
-void countHostRenderRequest();
-std::uint64_t hostRenderRequests();
-
-/// In host mode, the longest a projector showing displays of other packages goes without a frame.
+/// In host mode, the longest a projector showing displays of other packages goes without a frame
+/// (projector_host --keep-alive; 0: never, only scene-graph changes render).
 constexpr double kHostKeepAliveSeconds = 1.0;
+void setHostKeepAliveSeconds(double seconds);
+double hostKeepAliveSeconds();
 }  // namespace rviz_projector

@@ -33,7 +33,7 @@ struct FrameState
   std::uint64_t visibility = 0;  ///< ProjectionGate::visibilitySignature()
   PixelRect image;               ///< where the image is drawn in the window
   bool drawable = false;         ///< lens and pose available
-  std::uint64_t foreign_scene = 0;  ///< host mode: foreign scene graphs and render requests (set by the gate)
+  std::uint64_t foreign_scene = 0;  ///< host mode: ProjectionGate::foreignSceneSignature() (set by the gate)
   bool operator==(const FrameState& o) const;
 };
 
@@ -51,7 +51,7 @@ public:
   /// Whether `state` needs a new frame: it differs from the last frame rendered, or the view was
   /// invalidated, or the view shows displays that do not announce their changes (not from this
   /// package). Those force a frame every tick in rviz; in projector_host (host_mode.h) only when
-  /// their scene graph changed, a display asked for a render, or the keep-alive period passed.
+  /// their scene graph changed or the keep-alive period passed.
   /// When true, `state` is recorded as rendered.
   bool needsFrame(const FrameState& state);
   /// The next frame renders whatever the state (a new window, a read-back).

@@ -108,6 +108,8 @@ public Q_SLOTS:
 
 private Q_SLOTS:
   void onFrameTimer();
+  /// A display of this package changed (ProjectionChangeNotifier): frame now if the rate allows.
+  void onSceneChanged();
   void resubscribe();
   void updateOutput();
   void applyProjection();
