@@ -54,7 +54,10 @@ void signatureOf(const rviz::Property* entries, std::uint64_t& hash)
   }
 }
 
-bool foreignShown(const rviz::Property* entries)
+/// Calls `visit` for each ticked, enabled display not from this package, groups walked into, in
+/// list order, until `visit` returns true (then true).
+template <typename Visit>
+bool visitShownForeign(const rviz::Property* entries, const Visit& visit)
 {
   for (int i = 0; i < entries->numChildren(); ++i)
   {
@@ -70,12 +73,12 @@ bool foreignShown(const rviz::Property* entries)
     }
     if (qobject_cast<const rviz::DisplayGroup*>(display))
     {
-      if (foreignShown(entry))
+      if (visitShownForeign(entry, visit))
       {
         return true;
       }
     }
-    else if (!display->getClassId().startsWith("rviz_projector/"))
+    else if (!display->getClassId().startsWith("rviz_projector/") && visit(*display))
     {
       return true;
     }
@@ -83,30 +86,18 @@ bool foreignShown(const rviz::Property* entries)
   return false;
 }
 
+bool foreignShown(const rviz::Property* entries)
+{
+  return visitShownForeign(entries, [](const rviz::Display&) { return true; });
+}
+
 /// Mixes the scene graphs of the shown displays not from this package (host mode, host_mode.h).
 void foreignScene(const rviz::Property* entries, std::uint64_t& hash)
 {
-  for (int i = 0; i < entries->numChildren(); ++i)
-  {
-    const rviz::DisplayVisibilityProperty* entry = asEntry(entries->childAt(i));
-    if (!entry || !entry->getValue().toBool())
-    {
-      continue;
-    }
-    const rviz::Display* display = VisibilityEntry::displayOf(*entry);
-    if (!display->isEnabled())
-    {
-      continue;
-    }
-    if (qobject_cast<const rviz::DisplayGroup*>(display))
-    {
-      foreignScene(entry, hash);
-    }
-    else if (!display->getClassId().startsWith("rviz_projector/"))
-    {
-      mixSceneSignature(display->getSceneNode(), hash);
-    }
-  }
+  visitShownForeign(entries, [&hash](const rviz::Display& display) {
+    mixSceneSignature(display.getSceneNode(), hash);
+    return false;
+  });
 }
 
 rviz::Property* findTick(const rviz::Property* entries, const rviz::Display* display)

@@ -5,29 +5,18 @@ Shared by host_test.py; the windows are found with rviz_process.XWindows. Nothin
 fixed time: every wait polls a condition until a deadline.
 """
 import os
-import signal
-import subprocess
 
-import roslib.packages
 from Xlib import X
 
-from rviz_process import sanitize_run, wait_for
+from rviz_process import ProcessUnderTest, sanitize_run
 
 
-class HostProcess(object):
+class HostProcess(ProcessUnderTest):
     """`projector_host [args] CONFIG __name:=node_name`, output in a log file."""
 
     def __init__(self, config, args=(), node_name="projector_host", label="host", env_changes=None):
         self.node_name = node_name
-        binaries = roslib.packages.find_node("rviz_projector", "projector_host")
-        if not binaries:
-            raise RuntimeError("projector_host binary not found (rosrun rviz_projector projector_host)")
-        ros_home = os.environ.get("ROS_HOME", os.path.expanduser("~/.ros"))
-        log_dir = os.path.join(ros_home, "log")
-        os.makedirs(log_dir, exist_ok=True)
-        self.log_path = os.path.join(log_dir, "process_test_%s_%d.log" % (label, os.getpid()))
         env = dict(os.environ)
-        env["ROSCONSOLE_STDOUT_LINE_BUFFERED"] = "1"
         if sanitize_run():
             # projector_host itself is instrumented; leaks of rviz/OGRE/Mesa are not ours, and a
             # leak check at exit would slow the exit the tests time.
@@ -38,47 +27,8 @@ class HostProcess(object):
                 env.pop(key, None)
             else:
                 env[key] = value
-        self.log = open(self.log_path, "w")
-        command = [binaries[0]] + list(args) + ([config] if config else []) + ["__name:=" + node_name]
-        self.proc = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=self.log,
-                                     stderr=subprocess.STDOUT, env=env)
-        self.pid = self.proc.pid
-
-    def alive(self):
-        return self.proc.poll() is None
-
-    def wait_exit(self, timeout):
-        """Seconds until the process exited, or None if it still runs after timeout."""
-        import time
-        start = time.monotonic()
-        if wait_for(lambda: not self.alive(), max(0.0, timeout), period=0.01):
-            return time.monotonic() - start
-        return None
-
-    def returncode(self):
-        return self.proc.poll()
-
-    def signal(self, sig):
-        self.proc.send_signal(sig)
-
-    def log_text(self):
-        self.log.flush()
-        try:
-            with open(self.log_path) as f:
-                return f.read()
-        except OSError:
-            return ""
-
-    def log_tail(self, lines=25):
-        return "".join(self.log_text().splitlines(True)[-lines:])
-
-    def stop(self):
-        if self.alive():
-            self.proc.send_signal(signal.SIGTERM)
-            if not wait_for(lambda: not self.alive(), 5.0):
-                self.proc.kill()
-                self.proc.wait()
-        self.log.close()
+        command = list(args) + ([config] if config else []) + ["__name:=" + node_name]
+        ProcessUnderTest.__init__(self, "rviz_projector", "projector_host", command, label, env)
 
 
 class Pixels(object):

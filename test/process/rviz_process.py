@@ -155,44 +155,31 @@ def describe(windows):
                      for w in windows) or "none"
 
 
-class RvizProcess(object):
-    """`rviz -d config --disable-anti-aliasing __name:=node_name`, output in a log file."""
+class ProcessUnderTest(object):
+    """A ROS executable of `package` started as a user starts it, its output (stdout and stderr) in
+    a log under ROS_HOME/log (scripts/test --sanitize searches those for UBSan reports)."""
 
-    def __init__(self, config, node_name="rviz_under_test", label="rviz"):
-        self.node_name = node_name
-        binaries = roslib.packages.find_node("rviz", "rviz")
+    def __init__(self, package, executable, args, label, env):
+        binaries = roslib.packages.find_node(package, executable)
         if not binaries:
-            raise RuntimeError("rviz binary not found (rosrun rviz rviz)")
+            raise RuntimeError("%s not found (rosrun %s %s)" % (executable, package, executable))
         ros_home = os.environ.get("ROS_HOME", os.path.expanduser("~/.ros"))
         log_dir = os.path.join(ros_home, "log")
         os.makedirs(log_dir, exist_ok=True)
-        # A log under ROS_HOME/log: scripts/test --sanitize searches those for UBSan reports.
         self.log_path = os.path.join(log_dir, "process_test_%s_%d.log" % (label, os.getpid()))
-        # A home of its own: rviz keeps persistent settings (recent configs) in ~/.rviz.
-        self.home = tempfile.mkdtemp(prefix="rviz_process_test_home_")
-        env = dict(os.environ)
-        env["HOME"] = self.home
         # stdout is a file: line by line, so that a crash does not swallow the last lines.
         env["ROSCONSOLE_STDOUT_LINE_BUFFERED"] = "1"
-        if sanitize_run():
-            # The plugin is instrumented, the rviz binary is not: the ASan runtime must come first.
-            env["LD_PRELOAD"] = _asan_runtime()
-            # Leaks of rviz itself (uninstrumented, third-party) are not ours to report, and a leak
-            # check at exit would also slow the exit the quit tests time.
-            env["ASAN_OPTIONS"] = (env.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":")
-            # Seen here: with the runtime preloaded into rviz and a UTF-8 locale, Mesa's driconf
-            # (regcomp while the first GL window is created) deadlocks on glibc's locale lock.
-            # The C locale needs no conversion module loaded, so that lock is never taken.
-            env["LC_ALL"] = "C"
         self.log = open(self.log_path, "w")
-        self.proc = subprocess.Popen(
-            [binaries[0], "-d", config, "--disable-anti-aliasing", "__name:=" + node_name],
-            stdin=subprocess.DEVNULL, stdout=self.log, stderr=subprocess.STDOUT, env=env)
+        self.proc = subprocess.Popen([binaries[0]] + list(args), stdin=subprocess.DEVNULL, stdout=self.log,
+                                     stderr=subprocess.STDOUT, env=env)
         self.pid = self.proc.pid
         self.exit_time = None
 
     def alive(self):
         return self.proc.poll() is None
+
+    def returncode(self):
+        return self.proc.poll()
 
     def wait_exit(self, timeout):
         """Seconds until the process exited (polling every 10 ms), or None if it still runs after
@@ -218,13 +205,16 @@ class RvizProcess(object):
                 return "killed by signal %d" % -rc
         return "exit status %d" % rc
 
-    def log_tail(self, lines=25):
+    def log_text(self):
         self.log.flush()
         try:
             with open(self.log_path) as f:
-                return "".join(f.readlines()[-lines:])
+                return f.read()
         except OSError:
             return ""
+
+    def log_tail(self, lines=25):
+        return "".join(self.log_text().splitlines(True)[-lines:])
 
     def stop(self):
         """Ends the process if still running (SIGTERM, then SIGKILL) and cleans up."""
@@ -234,6 +224,32 @@ class RvizProcess(object):
                 self.proc.kill()
                 self.proc.wait()
         self.log.close()
+
+
+class RvizProcess(ProcessUnderTest):
+    """`rviz -d config --disable-anti-aliasing __name:=node_name`, output in a log file."""
+
+    def __init__(self, config, node_name="rviz_under_test", label="rviz"):
+        self.node_name = node_name
+        # A home of its own: rviz keeps persistent settings (recent configs) in ~/.rviz.
+        self.home = tempfile.mkdtemp(prefix="rviz_process_test_home_")
+        env = dict(os.environ)
+        env["HOME"] = self.home
+        if sanitize_run():
+            # The plugin is instrumented, the rviz binary is not: the ASan runtime must come first.
+            env["LD_PRELOAD"] = _asan_runtime()
+            # Leaks of rviz itself (uninstrumented, third-party) are not ours to report, and a leak
+            # check at exit would also slow the exit the quit tests time.
+            env["ASAN_OPTIONS"] = (env.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":")
+            # Seen here: with the runtime preloaded into rviz and a UTF-8 locale, Mesa's driconf
+            # (regcomp while the first GL window is created) deadlocks on glibc's locale lock.
+            # The C locale needs no conversion module loaded, so that lock is never taken.
+            env["LC_ALL"] = "C"
+        ProcessUnderTest.__init__(self, "rviz", "rviz",
+                                  ["-d", config, "--disable-anti-aliasing", "__name:=" + node_name], label, env)
+
+    def stop(self):
+        ProcessUnderTest.stop(self)
         shutil.rmtree(self.home, ignore_errors=True)
 
 
