@@ -57,9 +57,23 @@ check_demo() {
   shift
   rm -rf "$out"
   mark="rp-test-demo-$$-$(date +%s%N)"
-  local started=$SECONDS status=0
-  RP_TEST_DEMO_MARK="$mark" RP_WS="$RP_WS" DEMO_OUTPUT="$out" DEMO_SECONDS=0 DEMO_INTERVAL=0.5 DEMO_TIMEOUT=90 \
-    timeout -k 10 240 "$RP_ROOT/scripts/demo" "${options[@]}" >"$log" 2>&1 || status=$?
+  local started=$SECONDS status=0 attempt
+  for attempt in 1 2; do
+    status=0
+    rm -rf "$out"
+    RP_TEST_DEMO_MARK="$mark" RP_WS="$RP_WS" DEMO_OUTPUT="$out" DEMO_SECONDS=0 DEMO_INTERVAL=0.5 DEMO_TIMEOUT=90 \
+      timeout -k 10 240 "$RP_ROOT/scripts/demo" "${options[@]}" >"$log" 2>&1 || status=$?
+    # Known, unsolved (doc/notes/startup-crash.md): under load, Mesa's software renderer now and
+    # then crashes rviz while it starts up (SIGSEGV/SIGABRT). This check is about the demo script:
+    # one new start is allowed, printed, never hidden; a second crash fails.
+    if [ "$status" -ne 0 ] && [ "$attempt" -eq 1 ] &&
+      grep -Eq 'REQUIRED process \[rviz-[0-9]+\] has died' "$log" && grep -Eq 'exit code -(6|11)' "$log"; then
+      echo "KNOWN ISSUE: rviz died during start-up in $label (doc/notes/startup-crash.md), running it once more:"
+      grep -E 'exit code -|free\(\)|Segmentation' "$log" | head -n 3 | sed 's/^/  | /'
+      continue
+    fi
+    break
+  done
   [ "$status" -eq 0 ] || problems+=("exit status $status")
   for f in "$@"; do
     if [ ! -s "$out/$f.png" ]; then
