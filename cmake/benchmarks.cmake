@@ -3,6 +3,8 @@
 #    ProjectedPath CPU update, each next to a re-implementation of the reference pipeline, and of
 #    the mount calibration's solver.
 #  - rviz_projector_bench_probe: the end-to-end bench's X11 probe and ROS driver (scripts/bench --e2e).
+#  - rviz_projector_allocbench: heap allocations per projector frame and RSS, in a real rviz with a
+#    ProjectorCamera (scripts/bench --alloc; needs an X server and a ROS master).
 # Each is skipped, with a message, when its libraries are missing.
 
 find_package(benchmark QUIET)
@@ -25,6 +27,13 @@ if(benchmark_FOUND)
 else()
   message(STATUS "${PROJECT_NAME}: Google Benchmark not found (apt-get install libbenchmark-dev): microbenchmarks skipped")
 endif()
+
+#catkin_lint: ignore uninstalled_target
+add_executable(${PROJECT_NAME}_allocbench bench/alloc/alloc_bench.cpp)
+set_target_properties(${PROJECT_NAME}_allocbench PROPERTIES AUTOMOC OFF)
+target_link_libraries(${PROJECT_NAME}_allocbench ${PROJECT_NAME} ${catkin_LIBRARIES} Qt5::Widgets)
+target_compile_options(${PROJECT_NAME}_allocbench PRIVATE ${${PROJECT_NAME}_WARNINGS})
+add_dependencies(${PROJECT_NAME}_allocbench ${catkin_EXPORTED_TARGETS})
 
 # X11 (with its XShm, Xdamage, Xfixes parts) is found in CMakeLists.txt.
 if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)

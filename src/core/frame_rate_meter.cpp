@@ -5,48 +5,55 @@
 
 namespace rviz_projector
 {
-FrameRateMeter::FrameRateMeter(double window) : window_(std::isfinite(window) && window > 0.0 ? window : 2.0)
+FrameRateMeter::FrameRateMeter(double window)
+  : window_(std::isfinite(window) && window > 0.0 ? window : 2.0), ring_(kCapacity)
 {
 }
 
 void FrameRateMeter::sample(double now, std::uint64_t total)
 {
-  if (!std::isfinite(now) || (!samples_.empty() && now < samples_.back().time))
+  if (!std::isfinite(now) || (count_ > 0 && now < newest().time))
   {
     return;  // not monotonic: ignored
   }
-  if (!samples_.empty() && total > samples_.back().total)
+  if (count_ > 0 && total > newest().total)
   {
     last_frame_ = now;
     seen_frame_ = true;
   }
-  else if (samples_.empty() && total > 0)
+  else if (count_ == 0 && total > 0)
   {
     last_frame_ = now;  // frames before the first sample: at the latest now
     seen_frame_ = true;
   }
-  samples_.push_back({now, total});
-  // Keep one sample at or before the window's start, so the rate covers the whole window.
-  while (samples_.size() > 2 && samples_[1].time <= now - window_)
+  if (count_ == kCapacity)  // full: the oldest goes
   {
-    samples_.pop_front();
+    first_ = (first_ + 1) % kCapacity;
+    --count_;
+  }
+  ring_[(first_ + count_) % kCapacity] = Sample{now, total};
+  ++count_;
+  // Keep one sample at or before the window's start, so the rate covers the whole window.
+  while (count_ > 2 && at(1).time <= now - window_)
+  {
+    first_ = (first_ + 1) % kCapacity;
+    --count_;
   }
 }
 
 double FrameRateMeter::rate(double now) const
 {
-  if (samples_.size() < 2)
+  if (count_ < 2)
   {
     return 0.0;
   }
-  const Sample& newest = samples_.back();
   // The count at the window's start, interpolated between the samples around it.
-  const double start = std::max(now - window_, samples_.front().time);
-  double start_total = static_cast<double>(samples_.front().total);
-  for (std::size_t i = 1; i < samples_.size(); ++i)
+  const double start = std::max(now - window_, at(0).time);
+  double start_total = static_cast<double>(at(0).total);
+  for (std::size_t i = 1; i < count_; ++i)
   {
-    const Sample& a = samples_[i - 1];
-    const Sample& b = samples_[i];
+    const Sample& a = at(i - 1);
+    const Sample& b = at(i);
     if (b.time >= start)
     {
       const double span = b.time - a.time;
@@ -60,7 +67,7 @@ double FrameRateMeter::rate(double now) const
   {
     return 0.0;
   }
-  return (static_cast<double>(newest.total) - start_total) / elapsed;
+  return (static_cast<double>(newest().total) - start_total) / elapsed;
 }
 
 double FrameRateMeter::sinceLastFrame(double now) const

@@ -1,28 +1,24 @@
 #include "rviz_projector/displays/projector_camera_display.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include <OgreRenderWindow.h>
 #include <OgreViewport.h>
 #include <QGuiApplication>
 #include <QScreen>
-#include <QWidget>
 
 #include <rviz/bit_allocator.h>
-#include <rviz/config.h>
 #include <rviz/display_context.h>
 #include <rviz/display_group.h>
 #include <rviz/load_resource.h>
-#include <rviz/properties/display_group_visibility_property.h>
 #include <rviz/properties/bool_property.h>
 #include <rviz/properties/color_property.h>
+#include <rviz/properties/display_group_visibility_property.h>
 #include <rviz/properties/enum_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/int_property.h>
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/string_property.h>
-#include <rviz/properties/status_property.h>
 #include <rviz/window_manager_interface.h>
 
 #include "rviz_projector/displays/main_view_cost.h"
@@ -40,26 +36,13 @@
 
 namespace rviz_projector
 {
-namespace
-{
-/// The parts' Ok/Warn/Error levels are rviz's, value for value.
-template <typename Level>
-rviz::StatusProperty::Level levelOf(Level level)
-{
-  static_assert(int(Level::Ok) == rviz::StatusProperty::Ok && int(Level::Warn) == rviz::StatusProperty::Warn &&
-                    int(Level::Error) == rviz::StatusProperty::Error,
-                "status levels differ");
-  return static_cast<rviz::StatusProperty::Level>(level);
-}
-}  // namespace
-
 ProjectorCameraDisplay::ProjectorCameraDisplay() : props_(this)
 {
 }
 
 ProjectorCameraDisplay::~ProjectorCameraDisplay()
 {
-  frame_timer_.stop();
+  frame_clock_.stop();
   unsubscribe();
   image_publisher_.reset();
   output_.reset();  // listener, viewport, render window, widget
@@ -91,21 +74,20 @@ void ProjectorCameraDisplay::onInitialize()
   gate_->attach(visibility_property_);
 
   output_ = std::make_unique<ProjectorOutput>("Projector: " + getName(), view_->camera(), this);
+  // Esc leaves full screen; closing the window disables the display (both after the window's
+  // handlers returned).
   connect(output_.get(), &ProjectorOutput::leaveFullScreenRequested, this,
-          &ProjectorCameraDisplay::onLeaveFullScreenRequested);
-  connect(output_.get(), &ProjectorOutput::closedByUser, this, &ProjectorCameraDisplay::onWindowClosed);
+          [this] { props_.full_screen->setBool(false); });
+  connect(output_.get(), &ProjectorOutput::closedByUser, this, [this] { setEnabled(false); });
   image_publisher_ = std::make_unique<ProjectorImagePublisher>();
   overlay_ = std::make_unique<ProjectorFloorOverlay>(scene_manager_, scene_node_);
   crosshairs_ = std::make_unique<ProjectorCrosshairs>();
 
-  connect(qApp, SIGNAL(screenAdded(QScreen*)), this, SLOT(onScreensChanged()));
-  connect(qApp, SIGNAL(screenRemoved(QScreen*)), this, SLOT(onScreensChanged()));
-  frame_timer_.setSingleShot(true);
-  frame_timer_.setTimerType(Qt::PreciseTimer);
-  connect(&frame_timer_, SIGNAL(timeout()), this, SLOT(onFrameTimer()));
+  connect(qApp, SIGNAL(screenAdded(QScreen*)), this, SLOT(updateOutput()));  // when enabled
+  connect(qApp, SIGNAL(screenRemoved(QScreen*)), this, SLOT(updateOutput()));
+  connect(&frame_clock_, &ProjectorFrameClock::tick, this, &ProjectorCameraDisplay::onFrameTimer);
   connect(&ProjectionChangeNotifier::instance(), &ProjectionChangeNotifier::changed, this,
           &ProjectorCameraDisplay::onSceneChanged, Qt::QueuedConnection);
-  clock_.start();
   updateFrameRate();
   applyProjection();
   showVisibilityStatus();
@@ -126,12 +108,12 @@ void ProjectorCameraDisplay::onEnable()
   checkMainViewCost();
   subscribe();
   updateOutput();
-  frame_timer_.start(0);
+  frame_clock_.start();
 }
 
 void ProjectorCameraDisplay::onDisable()
 {
-  frame_timer_.stop();
+  frame_clock_.stop();
   unsubscribe();
   if (output_)
   {
@@ -154,7 +136,7 @@ void ProjectorCameraDisplay::reset()
     return;  // not initialised
   }
   // Raise again, at once, every problem that still holds.
-  transform_state_ = -1;
+  pose_follower_.forget();
   overlay_->invalidate();
   showVisibilityStatus();
   checkMainViewCost();
@@ -177,9 +159,7 @@ void ProjectorCameraDisplay::load(const rviz::Config& config)
 {
   Display::load(config);
   const QString replaced = props_.checkLoaded(config);
-  // Labels of older configs become plain screen names.
-  const std::string wanted = ProjectorOutput::screenName(props_.screen->getString());
-  props_.screen->setString(QString::fromStdString(wanted));
+  const std::string wanted = props_.normaliseScreen();  // labels of older configs: plain names
   // An output screen that is not connected is said at once, even while the display is disabled
   // (placing the window, when enabled, keeps the status up to date).
   if (!isEnabled() && wanted != kAutomaticScreen && !ProjectorOutput::screenConnected(wanted))
@@ -215,14 +195,8 @@ void ProjectorCameraDisplay::subscribe()
     return;
   }
   const std::string error = lens_source_.subscribe(props_.topic->getTopicStd());
-  if (error.empty())
-  {
-    setStatus(rviz::StatusProperty::Ok, "Topic", "OK");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Error, "Topic", "Error subscribing: " + QString::fromStdString(error));
-  }
+  setStatus(error.empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, "Topic",
+            error.empty() ? QString("OK") : "Error subscribing: " + QString::fromStdString(error));
 }
 
 void ProjectorCameraDisplay::unsubscribe()
@@ -233,7 +207,7 @@ void ProjectorCameraDisplay::unsubscribe()
 void ProjectorCameraDisplay::showLensStatuses()
 {
   const LensStatuses s = lens_source_.statuses(props_.topic->getTopic());
-  setStatus(levelOf(s.camera_info_level), "CameraInfo", s.camera_info);
+  setStatus(statusLevel(s.camera_info_level), "CameraInfo", s.camera_info);
   for (const auto& warning : {std::make_pair(QString("Distortion"), s.distortion),
                               std::make_pair(QString("Field of view"), s.field_of_view)})
   {
@@ -255,15 +229,11 @@ void ProjectorCameraDisplay::onLensChanged()
   }
 }
 
-std::string ProjectorCameraDisplay::projectorFrame() const
-{
-  const std::string frame = props_.frame->getStdString();
-  return frame.empty() ? lens_source_.frameId() : frame;
-}
-
 void ProjectorCameraDisplay::applyProjection()
 {
   markChanged();
+  projector_frame_ = props_.frame->getStdString();  // the Frame, or the CameraInfo's frame_id
+  projector_frame_ = projector_frame_.empty() ? lens_source_.frameId() : projector_frame_;
   if (!view_)
   {
     return;
@@ -282,8 +252,7 @@ void ProjectorCameraDisplay::applyProjection()
 
 void ProjectorCameraDisplay::updateFrameRate()
 {
-  const double refresh = output_ ? output_->refreshRate() : 0.0;
-  pacer_.setPeriod(1.0 / FramePacer::rate(props_.frame_rate->getInt(), refresh));
+  frame_clock_.setRate(props_.frame_rate->getInt(), output_ ? output_->refreshRate() : 0.0);
 }
 
 void ProjectorCameraDisplay::onFootprintPropertyChanged()
@@ -322,7 +291,7 @@ bool ProjectorCameraDisplay::updateCrosshairs()
   {
     markChanged();
   }
-  warnIf("Test pattern", problem.empty() ? QString() : "No crosshairs: " + QString::fromStdString(problem));
+  warnIf(QStringLiteral("Test pattern"), problem.empty() ? QString() : "No crosshairs: " + QString::fromStdString(problem));
   return wanted;
 }
 
@@ -347,12 +316,7 @@ void ProjectorCameraDisplay::updateImageOutput()
 
 void ProjectorCameraDisplay::fillScreenOptions()
 {
-  props_.screen->clearOptions();
-  props_.screen->addOption(kAutomaticScreen);
-  for (QScreen* screen : QGuiApplication::screens())
-  {
-    props_.screen->addOption(screen->name());
-  }
+  props_.fillScreenOptions();
 }
 
 void ProjectorCameraDisplay::updateOutput()
@@ -361,44 +325,15 @@ void ProjectorCameraDisplay::updateOutput()
   {
     return;
   }
-  OutputRequest request;
-  request.screen = ProjectorOutput::screenName(props_.screen->getString());
-  request.full_screen = props_.full_screen->getBool();
-  request.fsaa = props_.anti_aliasing->getBool() ? 4 : 0;
-  request.image_width = hasLens() ? lens().width() : 0;
-  request.image_height = hasLens() ? lens().height() : 0;
-  // rviz's screen; the primary one while rviz's window has none yet (start-up) or when rviz is
-  // embedded without a window manager.
-  QScreen* rviz_screen =
-      ProjectorOutput::screenOf(context_->getWindowManager() ? context_->getWindowManager()->getParentWindow() : nullptr);
-  request.rviz_screen = rviz_screen ? rviz_screen : QGuiApplication::primaryScreen();
+  rviz::WindowManagerInterface* rviz_window = context_->getWindowManager();  // null when embedded
+  const OutputRequest request =
+      props_.outputRequest(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0,
+                           ProjectorOutput::screenOf(rviz_window ? rviz_window->getParentWindow() : nullptr));
   output_->setTitle("Projector: " + getName());
-  showOutputResult(output_->present(request));
+  const OutputResult shown = output_->present(request);
+  setStatus(statusLevel(shown.level), "Output", shown.text);
   updateFrameRate();
   gate_->invalidate();
-}
-
-void ProjectorCameraDisplay::showOutputResult(const OutputResult& result)
-{
-  setStatus(levelOf(result.level), "Output", result.text);
-}
-
-void ProjectorCameraDisplay::onScreensChanged()
-{
-  if (isEnabled())
-  {
-    updateOutput();
-  }
-}
-
-void ProjectorCameraDisplay::onLeaveFullScreenRequested()
-{
-  props_.full_screen->setBool(false);
-}
-
-void ProjectorCameraDisplay::onWindowClosed()
-{
-  setEnabled(false);
 }
 
 ProjectorOutputWindow* ProjectorCameraDisplay::outputWindow() const
@@ -406,33 +341,25 @@ ProjectorOutputWindow* ProjectorCameraDisplay::outputWindow() const
   return output_ ? output_->window() : nullptr;
 }
 
-void ProjectorCameraDisplay::setTransformStatus(int state, const QString& text)
-{
-  transform_state_ = state;
-  setStatus(state == ProjectorPose::Ok ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, "Transform", text);
-}
-
 bool ProjectorCameraDisplay::updateCameraPose()
 {
-  const std::string frame = projectorFrame();
-  const double timeout = props_.tf_timeout->getFloat();
-  const ProjectorPose pose = lookupProjectorPose(*context_->getTF2BufferPtr(), fixed_frame_.toStdString(), frame,
-                                                 ros::Time::now().toSec(), timeout);
-  tf_age_ = pose.state == ProjectorPose::Ok || pose.state == ProjectorPose::Stale ? pose.age : std::nan("");
-  if (pose.state != ProjectorPose::Ok)
+  if (fixed_frame_ != fixed_frame_shown_)  // no string conversion per frame
   {
-    // A stale pose blanks the projector as a missing one does: no scene rather than an old picture.
-    setTransformStatus(pose.state,
-                       QString::fromStdString(describeProblem(pose, fixed_frame_.toStdString(), frame, timeout)));
-    return false;
+    fixed_frame_shown_ = fixed_frame_;
+    fixed_frame_std_ = fixed_frame_.toStdString();
   }
-  if (transform_state_ != ProjectorPose::Ok)
+  const ProjectorPoseFollower::Step step = pose_follower_.follow(
+      *context_->getTF2BufferPtr(), fixed_frame_std_, projectorFrame(), ros::Time::now().toSec(), props_.tf_timeout->getFloat());
+  if (step.status_changed)  // a stale pose blanks the projector as a missing one does
   {
-    setTransformStatus(ProjectorPose::Ok, "OK");  // steady state: no status text built per frame
+    setStatus(step.ok ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, QStringLiteral("Transform"),
+              step.ok ? QStringLiteral("OK") : QString::fromStdString(step.problem));
   }
-  pose_ = pose.optical_to_fixed;
-  view_->setPose(pose);
-  return true;
+  if (step.ok)
+  {
+    view_->setPose(pose_follower_.pose());
+  }
+  return step.ok;
 }
 
 void ProjectorCameraDisplay::updateFootprint()
@@ -442,30 +369,14 @@ void ProjectorCameraDisplay::updateFootprint()
     overlay_->setFootprintVisible(false);
     return;
   }
-  const FloorOverlayResult lit = overlay_->update(lens(), pose_, own_changes_, props_.footprint->getBool(),
+  const FloorOverlayResult lit = overlay_->update(lens(), pose_follower_.pose().optical_to_fixed, own_changes_, props_.footprint->getBool(),
                                                   props_.testPattern() == TestPattern::MetricGrid);
   updateFootprintVisible();
-  if (!lit.recomputed)
+  own_changes_ += lit.grid_changed ? 1 : 0;  // the grid is drawn anew
+  if (lit.status_changed)
   {
-    return;
-  }
-  if (lit.grid_changed)
-  {
-    markChanged();
-  }
-  if (lit.complete)
-  {
-    setStatus(rviz::StatusProperty::Ok, "Footprint",
-              QString("Lit floor area %1 x %2 m, throw distance %3 m")
-                  .arg(lit.width, 0, 'f', 2)
-                  .arg(lit.depth, 0, 'f', 2)
-                  .arg(lit.throw_distance, 0, 'f', 2));
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, "Footprint",
-              "Part of the image does not reach the floor (projector aims at or above the horizon, or "
-              "the floor is farther than 10 m)");
+    setStatus(lit.complete ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Footprint",
+              QString::fromStdString(footprintStatusText(lit)));
   }
 }
 
@@ -476,16 +387,16 @@ bool ProjectorCameraDisplay::prepareFrame()
     return false;
   }
   pose_ok_ = hasLens() && updateCameraPose();
-  if (!hasLens() && transform_state_ != -1)
+  if (!hasLens() && pose_follower_.shown())
   {
-    deleteStatus("Transform");
-    transform_state_ = -1;
+    deleteStatus(QStringLiteral("Transform"));
+    pose_follower_.forget();
   }
   updateFootprint();
   crosshairs_shown_ = updateCrosshairs();
   if (output_->fitViewport(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0))
   {
-    warnIf("Scaling", hasLens() ? output_->scalingNote(lens().width(), lens().height()) : QString());
+    warnIf(QStringLiteral("Scaling"), hasLens() ? output_->scalingNote(lens().width(), lens().height()) : QString());
   }
   return true;
 }
@@ -520,22 +431,14 @@ void ProjectorCameraDisplay::onFrameTimer()
     onLensChanged();
   }
   renderNow();
-  rate_meter_.sample(static_cast<double>(clock_.nsecsElapsed()) * 1e-9, frames_rendered_);
-  if (isEnabled())
-  {
-    const double delay = pacer_.tick(static_cast<double>(clock_.nsecsElapsed()) * 1e-9);
-    frame_timer_.start(static_cast<int>(std::ceil(delay * 1000.0)));
-  }
+  frame_clock_.frameDone(frames_rendered_, isEnabled());
 }
 
 void ProjectorCameraDisplay::onSceneChanged()
 {
-  // A frame now rather than at the next deadline, unless one went out less than a period ago (the
-  // Frame rate limit holds: early frames only replace deadlines that rendered nothing).
-  const double now = static_cast<double>(clock_.nsecsElapsed()) * 1e-9;
-  if (isEnabled() && frame_timer_.isActive() && rate_meter_.sinceLastFrame(now) >= pacer_.period())
+  if (isEnabled())
   {
-    frame_timer_.start(0);
+    frame_clock_.requestEarlyFrame();  // unless a frame went out less than a period ago
   }
 }
 
@@ -572,30 +475,15 @@ void ProjectorCameraDisplay::renderNow()
 
 void ProjectorCameraDisplay::setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text)
 {
-  auto it = status_cache_.find(name);
-  if (it != status_cache_.end() && it->second.first == level && it->second.second == text)
+  if (statuses_.set(level, name, text))
   {
-    return;
-  }
-  status_cache_[name] = {level, text};
-  Display::setStatus(level, name, text);
-}
-
-void ProjectorCameraDisplay::warnIf(const QString& name, const QString& warning)
-{
-  if (warning.isEmpty())
-  {
-    deleteStatus(name);
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Warn, name, warning);
+    Display::setStatus(level, name, text);
   }
 }
 
 void ProjectorCameraDisplay::deleteStatus(const QString& name)
 {
-  if (status_cache_.erase(name) > 0)
+  if (statuses_.remove(name))
   {
     Display::deleteStatus(name);
   }
@@ -603,8 +491,13 @@ void ProjectorCameraDisplay::deleteStatus(const QString& name)
 
 void ProjectorCameraDisplay::clearStatuses()
 {
-  status_cache_.clear();
+  statuses_.clear();
   Display::clearStatuses();
+}
+
+void ProjectorCameraDisplay::warnIf(const QString& name, const QString& warning)
+{
+  warning.isEmpty() ? deleteStatus(name) : setStatus(rviz::StatusProperty::Warn, name, warning);
 }
 }  // namespace rviz_projector
 

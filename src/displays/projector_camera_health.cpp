@@ -1,5 +1,5 @@
 // ProjectorCameraDisplay::health(): gathered from what the display and its parts already know
-// (the frame counters and FrameRateMeter, the last pose's tf age, the lens source's receive time,
+// (the frame counters and ProjectorFrameClock, the last pose's tf age, the lens source's receive time,
 // the output window and its screen, the statuses that say why nothing is drawn).
 #include <cmath>
 #include <limits>
@@ -14,13 +14,12 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
 {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   ProjectorCameraHealth h;
-  const double now = clock_.isValid() ? static_cast<double>(clock_.nsecsElapsed()) * 1e-9 : 0.0;
-  h.frame_rate_hz = rate_meter_.rate(now);
-  h.seconds_since_last_frame = rate_meter_.sinceLastFrame(now);
+  h.frame_rate_hz = frame_clock_.frameRate();
+  h.seconds_since_last_frame = frame_clock_.sinceLastFrame();
   h.frames_rendered = frames_rendered_;
   h.frames_skipped = frames_skipped_;
   h.has_lens = hasLens();
-  h.tf_age_s = hasLens() ? tf_age_ : kNone;  // the pose is looked up only with a lens
+  h.tf_age_s = hasLens() ? pose_follower_.tfAge() : kNone;  // the pose is looked up only with a lens
   h.camera_info_age_s = lens_source_.secondsSinceInfo();
   h.pose_ok = hasLens() && pose_ok_;
   if (output_)
@@ -31,10 +30,7 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
     h.screen_connected = !h.screen_name.empty() && ProjectorOutput::screenConnected(h.screen_name);
   }
   // The scene (or the crosshairs) is drawn only with a lens and a fresh pose: renderNow()'s rule.
-  const auto status = [this](const char* name) {
-    const auto it = status_cache_.find(name);
-    return it == status_cache_.end() ? std::string() : it->second.second.toStdString();
-  };
+  const auto status = [this](const char* name) { return statuses_.text(name).toStdString(); };
   h.blanked = true;
   if (!isEnabled())
   {

@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projector_camera_properties.h"
 
+#include <QGuiApplication>
+#include <QScreen>
 #include <ros/message_traits.h>
 #include <rviz/config.h>
 #include <rviz/display.h>
@@ -15,6 +17,7 @@
 #include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_output.h"
 
 namespace rviz_projector
 {
@@ -150,5 +153,36 @@ QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
   }
   check.number(config.mapGetChild(image_output->getName()).mapGetChild(image_rate->getName()), image_rate);
   return check.report();
+}
+
+void ProjectorCameraProperties::fillScreenOptions()
+{
+  screen->clearOptions();
+  screen->addOption(kAutomaticScreen);
+  for (QScreen* s : QGuiApplication::screens())
+  {
+    screen->addOption(s->name());
+  }
+}
+
+std::string ProjectorCameraProperties::normaliseScreen()
+{
+  const std::string name = ProjectorOutput::screenName(screen->getString());
+  screen->setString(QString::fromStdString(name));
+  return name;
+}
+
+OutputRequest ProjectorCameraProperties::outputRequest(std::uint32_t image_width, std::uint32_t image_height,
+                                                       QScreen* rviz_screen) const
+{
+  OutputRequest request;
+  request.screen = ProjectorOutput::screenName(screen->getString());
+  request.full_screen = full_screen->getBool();
+  request.fsaa = anti_aliasing->getBool() ? 4 : 0;
+  request.image_width = image_width;
+  request.image_height = image_height;
+  // The primary screen while rviz's window has none yet (start-up) or rviz is embedded without one.
+  request.rviz_screen = rviz_screen ? rviz_screen : QGuiApplication::primaryScreen();
+  return request;
 }
 }  // namespace rviz_projector

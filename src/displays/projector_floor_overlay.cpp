@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <OgreColourValue.h>
 
@@ -17,6 +18,19 @@ namespace
 constexpr double kGridMargin = 0.5;
 constexpr double kGridMaxHalfExtent = 25.0;
 }  // namespace
+
+std::string footprintStatusText(const FloorOverlayResult& result)
+{
+  if (!result.complete)
+  {
+    return "Part of the image does not reach the floor (projector aims at or above the horizon, or the floor is "
+           "farther than 10 m)";
+  }
+  char text[1024];  // three %.2f of any double fit
+  std::snprintf(text, sizeof(text), "Lit floor area %.2f x %.2f m, throw distance %.2f m", result.width, result.depth,
+                result.throw_distance);
+  return text;
+}
 
 ProjectorFloorOverlay::ProjectorFloorOverlay(Ogre::SceneManager* scene_manager, Ogre::SceneNode* parent)
   : footprint_(std::make_unique<ProjectorFootprintVisual>(scene_manager, parent))
@@ -65,6 +79,13 @@ FloorOverlayResult ProjectorFloorOverlay::update(const PinholeModel& lens, const
   result.width = lit.width();
   result.depth = lit.depth();
   result.throw_distance = lit.throwDistance();
+  // (An incomplete footprint's text has no figures; they may be infinite.)
+  const std::array<long long, 4> status_key =
+      result.complete ? std::array<long long, 4>{2, std::llround(result.width * 100.0), std::llround(result.depth * 100.0),
+                                                 std::llround(result.throw_distance * 100.0)} :
+                        std::array<long long, 4>{1, 0, 0, 0};
+  result.status_changed = status_key != status_key_;
+  status_key_ = status_key;
   if (footprint)
   {
     footprint_->update(lit);

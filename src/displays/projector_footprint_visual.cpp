@@ -47,8 +47,16 @@ void ProjectorFootprintVisual::update(const FloorFootprint& footprint)
 {
   const Ogre::ColourValue frustum_colour(1.0f, 1.0f, 0.3f, 1.0f);
   const Ogre::ColourValue floor_colour(0.3f, 1.0f, 1.0f, 1.0f);
-  lines_->clear();
-  lines_->begin(material_->getName(), Ogre::RenderOperation::OT_LINE_LIST, material_->getGroup());
+  // Always 16 vertices: after the first time the section and its vertex buffer are rewritten in
+  // place (no allocation while the robot drives).
+  if (!lines_->getSections().empty())
+  {
+    lines_->beginUpdate(0);
+  }
+  else
+  {
+    lines_->begin(material_->getName(), Ogre::RenderOperation::OT_LINE_LIST, material_->getGroup());
+  }
   const auto& c = footprint.corners();
   for (int i = 0; i < 4; ++i)
   {

@@ -73,4 +73,24 @@ std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_
   }
   return std::string();
 }
+
+ProjectorPoseFollower::Step ProjectorPoseFollower::follow(tf2_ros::Buffer& tf, const std::string& fixed_frame,
+                                                          const std::string& frame, double now, double timeout)
+{
+  pose_ = lookupProjectorPose(tf, fixed_frame, frame, now, timeout);
+  Step step;
+  step.ok = pose_.state == ProjectorPose::Ok;
+  step.status_changed = !step.ok || shown_ != ProjectorPose::Ok;
+  if (!step.ok)
+  {
+    step.problem = describeProblem(pose_, fixed_frame, frame, timeout);
+  }
+  shown_ = pose_.state;
+  return step;
+}
+
+double ProjectorPoseFollower::tfAge() const
+{
+  return pose_.state == ProjectorPose::Ok || pose_.state == ProjectorPose::Stale ? pose_.age : std::nan("");
+}
 }  // namespace rviz_projector

@@ -108,3 +108,28 @@ TEST(FrameRateMeter, TimeGoingBackIsIgnored)
   meter.sample(4.0, 1000);  // ignored
   EXPECT_NEAR(meter.rate(6.0), 10.0, 1e-9);
 }
+
+TEST(FrameRateMeter, SamplingFasterThanTheRingHoldsMeasuresTheNewestSamples)
+{
+  // 2000 samples per second for 3 s: more than kCapacity in the 2 s window. The oldest go first;
+  // 100 frames/s (one frame every 20 samples) is still measured over what is kept.
+  FrameRateMeter meter(2.0);
+  std::uint64_t total = 0;
+  for (int i = 0; i <= 6000; ++i)
+  {
+    if (i > 0 && i % 20 == 0)
+    {
+      ++total;
+    }
+    meter.sample(i / 2000.0, total);
+  }
+  // kCapacity samples span 0.51 s: a frame more or less at its ends is 2 frames/s.
+  EXPECT_NEAR(meter.rate(3.0), 100.0, 4.0);
+  EXPECT_NEAR(meter.sinceLastFrame(3.0), 0.0, 1e-9);
+  // Then one sample a second: the full ring empties to the window as before.
+  for (int s = 4; s <= 10; ++s)
+  {
+    meter.sample(s, total + static_cast<std::uint64_t>(s - 3) * 10);
+  }
+  EXPECT_NEAR(meter.rate(10.0), 10.0, 1e-9);
+}

@@ -8,9 +8,11 @@
 //   ProjectorImagePublisher    optional Image + matching CameraInfo
 //   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
 //   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
-//   lookupProjectorPose        the projector's pose from tf
-//   FramePacer (core)          frame deadlines at the Frame rate limit / screen refresh
-//   FrameRateMeter (core)      frames actually rendered per second, for health()
+//   ProjectorPoseFollower      the projector's pose from tf, and when its Transform status changes
+//   ProjectorFrameClock        when to render: FramePacer (core) deadlines at the Frame rate limit /
+//                              screen refresh, early frames on changes, FrameRateMeter (core)
+//   StatusCache                the statuses shown: only changes reach rviz
+//   ProjectorCameraProperties  the properties, and the output window they ask for
 //   health() (projector_camera_health.cpp)  what the display does, in plain numbers
 // See README "Architecture" for how one frame flows.
 #pragma once
@@ -25,20 +27,18 @@
 #include <vector>
 
 #include <OgreRenderTargetListener.h>
-#include <QElapsedTimer>
-#include <QTimer>
 #include <ros/ros.h>
 #include <rviz/display.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "rviz_projector/core/frame_pacer.h"
-#include "rviz_projector/core/frame_rate_meter.h"
 #include "rviz_projector/core/pinhole_model.h"
-#include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/core/screen_choice.h"
 #include "rviz_projector/displays/projector_camera_health.h"
 #include "rviz_projector/displays/projector_camera_properties.h"
+#include "rviz_projector/displays/projector_frame_clock.h"
 #include "rviz_projector/displays/projector_lens_source.h"
+#include "rviz_projector/displays/projector_pose.h"
+#include "rviz_projector/displays/status_cache.h"
 #endif
 
 
@@ -56,7 +56,6 @@ class ProjectorImagePublisher;
 class ProjectorOutput;
 class ProjectorOutputWindow;
 class ProjectorView;
-struct OutputResult;
 
 class ProjectorCameraDisplay : public rviz::Display, public Ogre::RenderTargetListener
 {
@@ -73,8 +72,8 @@ public:
   /// Loads the config, then reports values that were clamped or replaced (a "Config" warning).
   void load(const rviz::Config& config) override;
   void setTopic(const QString& topic, const QString& datatype) override;
-  /// Statuses are evaluated every frame; these forward only actual changes to rviz (each call posts
-  /// an event and repaints the Displays panel).
+  /// Statuses are evaluated every frame; these forward only actual changes to rviz (StatusCache:
+  /// each rviz call posts an event and repaints the Displays panel).
   void setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text) override;
   void deleteStatus(const QString& name) override;
   void clearStatuses() override;
@@ -111,6 +110,7 @@ private Q_SLOTS:
   /// A display of this package changed (ProjectionChangeNotifier): frame now if the rate allows.
   void onSceneChanged();
   void resubscribe();
+  /// Shows the output window as the properties ask (when enabled): "Output" status.
   void updateOutput();
   void applyProjection();
   void updateFrameRate();
@@ -118,9 +118,6 @@ private Q_SLOTS:
   void updateTestPattern();
   void updateImageOutput();
   void fillScreenOptions();
-  void onScreensChanged();
-  void onLeaveFullScreenRequested();
-  void onWindowClosed();
 
 private:
   void subscribe();
@@ -133,7 +130,6 @@ private:
   void checkMainViewCost();
   /// The "Visibility" error when no visibility bit was left for this display.
   void showVisibilityStatus();
-  void showOutputResult(const OutputResult& result);
   /// Moves the camera to the projector's latest tf pose; false (with a status) when unavailable.
   bool updateCameraPose();
   void updateFootprint();
@@ -144,10 +140,19 @@ private:
   void updateFootprintVisible();
   /// Something this display itself draws or how it draws changed: render again.
   void markChanged() { ++own_changes_; }
-  std::string projectorFrame() const;
-  void setTransformStatus(int state, const QString& text);
+  /// The Frame property, or the CameraInfo's frame_id when it is empty.
+  const std::string& projectorFrame() const { return projector_frame_; }
   /// A Warn status `name` with this text; deleted when the text is empty.
   void warnIf(const QString& name, const QString& warning);
+  /// The parts' Ok/Warn/Error levels are rviz's, value for value.
+  template <typename Level>
+  static rviz::StatusProperty::Level statusLevel(Level level)
+  {
+    static_assert(int(Level::Ok) == rviz::StatusProperty::Ok && int(Level::Warn) == rviz::StatusProperty::Warn &&
+                      int(Level::Error) == rviz::StatusProperty::Error,
+                  "status levels differ");
+    return static_cast<rviz::StatusProperty::Level>(level);
+  }
 
   ProjectorCameraProperties props_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
@@ -155,23 +160,21 @@ private:
   ProjectorLensSource lens_source_;
   std::pair<std::uint32_t, std::uint32_t> shown_size_{0, 0};  ///< image size the window was laid out for
   bool pose_ok_ = false;
-  RigidTransform pose_;       ///< optical frame -> fixed frame, when pose_ok_
-  int transform_state_ = -1;  ///< which Transform status is shown (avoids rebuilding its text)
-  double tf_age_ = std::numeric_limits<double>::quiet_NaN();  ///< age of the last pose's tf, s (NaN: none)
+  ProjectorPoseFollower pose_follower_;
+  std::string projector_frame_;  ///< projectorFrame(), kept so that no frame builds it
+  QString fixed_frame_shown_;    ///< the fixed frame fixed_frame_std_ was made from
+  std::string fixed_frame_std_;
 
   std::unique_ptr<ProjectionGate> gate_;
   std::unique_ptr<ProjectorOutput> output_;
   std::unique_ptr<ProjectorImagePublisher> image_publisher_;
   std::unique_ptr<ProjectorView> view_;
   std::uint32_t vis_bit_ = 0;
-  QTimer frame_timer_;
-  QElapsedTimer clock_;
-  FramePacer pacer_;
-  FrameRateMeter rate_meter_;  ///< sampled at each frame timer tick
+  ProjectorFrameClock frame_clock_;
   std::uint64_t frames_rendered_ = 0;
   std::uint64_t frames_skipped_ = 0;
   std::uint64_t own_changes_ = 0;
-  std::map<QString, std::pair<int, QString>> status_cache_;
+  StatusCache statuses_;
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
   std::unique_ptr<ProjectorCrosshairs> crosshairs_;
   bool crosshairs_shown_ = false;

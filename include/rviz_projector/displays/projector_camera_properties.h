@@ -2,7 +2,12 @@
 // ranges, help texts). Changes call the display's slots.
 #pragma once
 
+#include <cstdint>
+#include <string>
+
 #include <QString>
+
+class QScreen;
 
 namespace rviz
 {
@@ -19,6 +24,8 @@ class StringProperty;
 
 namespace rviz_projector
 {
+struct OutputRequest;
+
 /// The Test pattern property's choices (names as the Displays panel shows them).
 enum class TestPattern
 {
@@ -40,6 +47,14 @@ struct ProjectorCameraProperties
   TestPattern testPattern() const;
   /// Shows Rows and Columns only for Crosshairs.
   void showTestPatternOptions();
+  /// The Output screen's choices: Automatic, then every connected screen by name.
+  void fillScreenOptions();
+  /// The screen name in Output screen; labels of older configs ("NAME (WxH at X,Y)") become the
+  /// plain name, in the property too.
+  std::string normaliseScreen();
+  /// The output window these properties ask for, for an image of this size (0 x 0: no lens yet),
+  /// rviz's main window being on `rviz_screen`.
+  OutputRequest outputRequest(std::uint32_t image_width, std::uint32_t image_height, QScreen* rviz_screen) const;
 
   rviz::RosTopicProperty* topic;
   rviz::StringProperty* frame;

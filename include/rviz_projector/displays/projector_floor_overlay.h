@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "rviz_projector/core/floor_footprint.h"
@@ -33,7 +34,15 @@ struct FloorOverlayResult
   double depth = 0.0;          ///< lit area along, metres
   double throw_distance = 0.0; ///< lens to the image centre on the floor, metres
   bool grid_changed = false;   ///< the test grid's mesh was rebuilt (the projector view must render)
+  /// The Footprint status must be shown anew: completeness or a figure as the status shows it (to
+  /// the centimetre) changed, or invalidate() was called. While the robot drives on a flat floor
+  /// the figures stay: no status text is built per frame.
+  bool status_changed = false;
 };
+
+/// The "Footprint" status text of a result: the lit area and throw distance (an Ok status) when
+/// complete, otherwise why part of the image misses the floor (a warning).
+std::string footprintStatusText(const FloorOverlayResult& result);
 
 class ProjectorFloorOverlay
 {
@@ -52,7 +61,11 @@ public:
   FloorOverlayResult update(const PinholeModel& lens, const RigidTransform& optical_to_fixed, std::uint64_t revision,
                             bool footprint, bool grid);
   /// Forces the next update() to recompute (fixed frame changed, statuses were reset).
-  void invalidate() { revision_ = ~0ull; }
+  void invalidate()
+  {
+    revision_ = ~0ull;
+    status_key_ = {};
+  }
   void setFootprintVisible(bool visible);
   void clearGrid();
   /// Visibility flags of the footprint lines (the projector's own view must not see them).
@@ -63,6 +76,7 @@ private:
   std::unique_ptr<FloorMesh> grid_mesh_;
   std::array<double, 12> key_{};
   std::uint64_t revision_ = ~0ull;
+  std::array<long long, 4> status_key_{};  ///< completeness (1/2) and the shown figures in cm; {} = none
   std::vector<Vec2> grid_triangles_;
   std::vector<Vec2> scratch_;
 };

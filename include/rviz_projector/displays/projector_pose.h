@@ -41,4 +41,32 @@ ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_
 /// The Transform status text of a pose that is not Ok (why the projector shows no scene).
 std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_frame, const std::string& frame,
                             double timeout);
+
+/// The projector's pose frame after frame, and when the Transform status must change. A pose that
+/// stays Ok (steady state, or the robot driving) builds no status text.
+class ProjectorPoseFollower
+{
+public:
+  struct Step
+  {
+    bool ok = false;              ///< pose() is usable
+    bool status_changed = false;  ///< show the Transform status anew: "OK" when ok, else `problem`
+    std::string problem;          ///< why the projector shows no scene (when !ok)
+  };
+  /// Looks the pose up (lookupProjectorPose); a stale pose blanks the projector as a missing one.
+  Step follow(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame, double now,
+              double timeout);
+  /// The Transform status is shown no more (rviz's Reset cleared it): the next follow() says it.
+  void forget() { shown_ = -1; }
+  /// Whether follow() has a Transform status shown.
+  bool shown() const { return shown_ != -1; }
+  /// The last pose looked up.
+  const ProjectorPose& pose() const { return pose_; }
+  /// Age of the last pose's tf, seconds (NaN when there was none).
+  double tfAge() const;
+
+private:
+  ProjectorPose pose_;
+  int shown_ = -1;  ///< the ProjectorPose::State whose status is shown, -1 for none
+};
 }  // namespace rviz_projector

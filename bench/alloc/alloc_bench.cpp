@@ -1,0 +1,350 @@
+// Heap allocations per projector frame (issue 11, defect 11), in a real rviz (VisualizationManager
+// + RenderPanel, as the rviz tests create it) with a ProjectorCamera full screen on the projector
+// screen and a ProjectedPath it shows. malloc and its relatives are replaced in this executable
+// (every library's calls land here) and count the calls made on the main thread while counting is
+// on, i.e. inside the measured calls only.
+//
+// Measured per frame, in steady state (after warm-up frames):
+//   steady       nothing changes; ProjectorCameraDisplay::renderNow() finds nothing to render
+//   same-scene   nothing visible changes but a render is asked for every frame (another display of
+//                this package said it changed: ProjectionChangeCounter)
+//   driving      the projector's pose changes every frame (the robot drives and turns)
+//   ogre-only    the same output window rendered by OGRE alone (RenderWindow::update + swap, with
+//                the display's preRenderTargetUpdate): what OGRE and the GL driver allocate on the
+//                main thread, for comparison
+//   frame-clock  the display's per-tick bookkeeping (ProjectorFrameClock::frameDone: the frame
+//                rate meter's sample), outside renderNow()
+// and the process RSS before and after the N frames of each.
+//
+// Run by scripts/bench --alloc (a ROS master and an X server; the two-screen Xorg dummy server
+// puts the projector window full screen on its own 1280x800 screen).
+#include <malloc.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include <OgreRenderWindow.h>
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QThread>
+#include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+#include <rviz/display.h>
+#include <rviz/render_panel.h>
+#include <rviz/visualization_manager.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <tf2/LinearMath/Transform.h>
+#include <tf2_ros/buffer.h>
+
+#include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_frame_clock.h"
+#include "rviz_projector/displays/projector_output_window.h"
+
+// ---- counting allocator ---------------------------------------------------------------------
+extern "C" {
+void* __libc_malloc(size_t size);
+void* __libc_calloc(size_t n, size_t size);
+void* __libc_realloc(void* p, size_t size);
+void* __libc_memalign(size_t alignment, size_t size);
+void __libc_free(void* p);
+}
+
+namespace
+{
+thread_local bool t_counting = false;  // initial-exec TLS of the executable: no allocation
+std::atomic<std::uint64_t> g_allocations{0};
+std::atomic<std::uint64_t> g_bytes{0};
+
+inline void count(size_t size)
+{
+  if (t_counting)
+  {
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+    g_bytes.fetch_add(size, std::memory_order_relaxed);
+  }
+}
+}  // namespace
+
+extern "C" {
+void* malloc(size_t size) noexcept
+{
+  count(size);
+  return __libc_malloc(size);
+}
+void* calloc(size_t n, size_t size) noexcept
+{
+  count(n * size);
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, size_t size) noexcept
+{
+  count(size);
+  return __libc_realloc(p, size);
+}
+void* memalign(size_t alignment, size_t size) noexcept
+{
+  count(size);
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(size_t alignment, size_t size) noexcept
+{
+  count(size);
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, size_t alignment, size_t size) noexcept
+{
+  count(size);
+  void* p = __libc_memalign(alignment, size);
+  if (!p)
+  {
+    return ENOMEM;
+  }
+  *out = p;
+  return 0;
+}
+void free(void* p) noexcept
+{
+  __libc_free(p);
+}
+}
+
+namespace
+{
+using rviz_projector::ProjectorCameraDisplay;
+
+struct Counted
+{
+  std::uint64_t allocations = 0;
+  std::uint64_t bytes = 0;
+};
+
+/// Runs `f` with counting on (main thread only) and returns what it allocated.
+template <typename F>
+Counted counted(F f)
+{
+  const std::uint64_t a0 = g_allocations.load(), b0 = g_bytes.load();
+  t_counting = true;
+  f();
+  t_counting = false;
+  return { g_allocations.load() - a0, g_bytes.load() - b0 };
+}
+
+double rssMiB()
+{
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+void spin(double seconds)
+{
+  QElapsedTimer clock;
+  clock.start();
+  do
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 5);
+    ros::spinOnce();
+    QThread::msleep(2);
+  } while (clock.nsecsElapsed() < static_cast<qint64>(seconds * 1e9));
+}
+
+template <typename Done>
+bool waitFor(Done done, double timeout)
+{
+  QElapsedTimer clock;
+  clock.start();
+  while (!done() && clock.nsecsElapsed() < static_cast<qint64>(timeout * 1e9))
+  {
+    spin(0.01);
+  }
+  return done();
+}
+
+/// The projector's optical frame at (x, y, 1.2 m), looking along `yaw`, pitched down 0.9 rad.
+geometry_msgs::TransformStamped projectorPose(const std::string& child, double x, double y, double yaw,
+                                              const ros::Time& stamp)
+{
+  const double c = std::cos(0.9), s = std::sin(0.9);
+  // Optical axes in the robot frame: x right, y down, z forward (and down by the pitch).
+  const tf2::Matrix3x3 optical(0, -s, c, -1, 0, 0, 0, -c, -s);
+  tf2::Matrix3x3 turn;
+  turn.setRPY(0, 0, yaw);
+  tf2::Quaternion q;
+  (turn * optical).getRotation(q);
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = "map";
+  t.child_frame_id = child;
+  t.transform.translation.x = x;
+  t.transform.translation.y = y;
+  t.transform.translation.z = 1.2;
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
+struct Row
+{
+  std::string name;
+  int frames = 0;
+  std::uint64_t rendered = 0;
+  Counted total;
+  double rss_before = 0, rss_after = 0;
+};
+
+void print(const Row& r)
+{
+  std::printf("%-11s %7d %9llu %12.2f %12.1f %10.1f %10.1f %+9.2f\n", r.name.c_str(), r.frames,
+              static_cast<unsigned long long>(r.rendered), static_cast<double>(r.total.allocations) / r.frames,
+              static_cast<double>(r.total.bytes) / r.frames, r.rss_before, r.rss_after, r.rss_after - r.rss_before);
+  std::fflush(stdout);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "alloc_bench", ros::init_options::AnonymousName);
+  QApplication app(argc, argv);
+  int frames = 600;
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--frames") == 0)
+    {
+      frames = std::max(10, std::atoi(argv[i + 1]));
+    }
+  }
+  const int warmup = 120;
+  ros::NodeHandle nh;
+
+  auto* panel = new rviz::RenderPanel();
+  panel->resize(640, 480);
+  panel->show();
+  auto* manager = new rviz::VisualizationManager(panel);
+  panel->initialize(manager->getSceneManager(), manager);
+  manager->initialize();
+  manager->setFixedFrame("map");
+  manager->startUpdate();
+
+  auto* path_display = manager->createDisplay("rviz_projector/ProjectedPath", "Path", true);
+  path_display->subProp("Topic")->setValue("/alloc_bench/plan");
+  auto* projector = dynamic_cast<ProjectorCameraDisplay*>(
+      manager->createDisplay("rviz_projector/ProjectorCamera", "Projector", true));
+  if (!projector)
+  {
+    std::fprintf(stderr, "alloc_bench: no ProjectorCamera display (is the workspace sourced?)\n");
+    return 1;
+  }
+  projector->subProp("Topic")->setValue("/alloc_bench/camera_info");
+  projector->subProp("Frame")->setValue("alloc_bench_fixed");
+
+  tf2_ros::Buffer& tf = *manager->getTF2BufferPtr();
+  tf.setTransform(projectorPose("alloc_bench_fixed", 0.0, 0.0, 0.0, ros::Time(0)), "alloc_bench", true);
+
+  ros::Publisher info_pub = nh.advertise<sensor_msgs::CameraInfo>("/alloc_bench/camera_info", 1, true);
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = "alloc_bench_fixed";
+  info.width = 1280;
+  info.height = 800;
+  info.distortion_model = "plumb_bob";
+  info.D = { 0, 0, 0, 0, 0 };
+  info.K = { 1300, 0, 639.5, 0, 1300, 399.5, 0, 0, 1 };
+  info.R = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  info.P = { 1300, 0, 639.5, 0, 0, 1300, 399.5, 0, 0, 0, 1, 0 };
+  info_pub.publish(info);
+
+  // A path ahead of the robot: a few arrows and the destination circle in the projector's view.
+  ros::Publisher path_pub = nh.advertise<nav_msgs::Path>("/alloc_bench/plan", 1, true);
+  nav_msgs::Path path;
+  path.header.frame_id = "map";
+  for (int i = 0; i <= 20; ++i)
+  {
+    geometry_msgs::PoseStamped p;
+    p.header = path.header;
+    p.pose.position.x = 0.5 + 0.1 * i;
+    p.pose.position.y = 0.02 * i;
+    p.pose.orientation.w = 1;
+    path.poses.push_back(p);
+  }
+  path_pub.publish(path);
+
+  if (!waitFor([&] { return projector->hasLens() && projector->outputWindow() && projector->outputWindow()->isVisible(); },
+               15.0))
+  {
+    std::fprintf(stderr, "alloc_bench: the projector got no CameraInfo or shows no window\n");
+    return 1;
+  }
+  spin(2.0);
+  const Ogre::RenderWindow* rw = projector->outputWindow()->renderWindow();
+  std::printf("# output window %ux%u%s, %d frames per row after %d warm-up frames\n", rw->getWidth(),
+              rw->getHeight(), projector->outputWindow()->isFullScreenOn() ? " full screen" : " windowed", frames,
+              warmup);
+  std::printf("%-11s %7s %9s %12s %12s %10s %10s %9s\n", "scenario", "frames", "rendered", "allocs/frame",
+              "bytes/frame", "RSS0 MiB", "RSS1 MiB", "dRSS MiB");
+
+  // One scenario: `before` runs uncounted before each frame (events, tf), `frame` is counted.
+  auto run = [&](const std::string& name, auto before, auto frame) {
+    Row row;
+    row.name = name;
+    row.frames = frames;
+    for (int i = 0; i < warmup; ++i)
+    {
+      spin(0.0);
+      before(i);
+      frame();
+    }
+    row.rss_before = rssMiB();
+    for (int i = 0; i < frames; ++i)
+    {
+      spin(0.0);  // rviz's own update and the display's frame clock run here, uncounted
+      before(warmup + i);
+      const std::uint64_t r0 = projector->framesRendered();
+      const Counted c = counted(frame);
+      row.rendered += projector->framesRendered() - r0;
+      row.total.allocations += c.allocations;
+      row.total.bytes += c.bytes;
+    }
+    row.rss_after = rssMiB();
+    print(row);
+  };
+  auto render_now = [&] { projector->renderNow(); };
+
+  run("steady", [](int) {}, render_now);
+  run("same-scene", [](int) { rviz_projector::ProjectionChangeCounter::bump(); }, render_now);
+  projector->subProp("Frame")->setValue("alloc_bench_driving");
+  run("driving",
+      [&](int i) {
+        // 0.5 m/s along a gentle curve at 60 frames/s.
+        const double t = i / 60.0;
+        tf.setTransform(projectorPose("alloc_bench_driving", 0.5 * t, 0.1 * std::sin(0.5 * t), 0.2 * std::sin(0.3 * t),
+                                      ros::Time::now()),
+                        "alloc_bench", false);
+      },
+      render_now);
+  Ogre::RenderWindow* window = projector->outputWindow()->renderWindow();
+  run("ogre-only", [](int) {},
+      [&] {
+        window->update(false);
+        window->swapBuffers();
+      });
+  rviz_projector::ProjectorFrameClock clock;
+  std::uint64_t ticks = 0;
+  run("frame-clock", [](int) {}, [&] { clock.frameDone(++ticks, false); });
+
+  delete manager;
+  delete panel;
+  return 0;
+}

@@ -1,0 +1,71 @@
+// ProjectorPoseFollower: the pose from tf frame after frame, and when ProjectorCamera must show its
+// Transform status anew (an Ok pose that stays Ok builds nothing). tf2_ros::Buffer without a node.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <tf2_ros/buffer.h>
+
+#include "rviz_projector/displays/projector_pose.h"
+
+using rviz_projector::ProjectorPoseFollower;
+
+namespace
+{
+geometry_msgs::TransformStamped transform(const std::string& child, double stamp, double x)
+{
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "map";
+  t.header.stamp = ros::Time(stamp);
+  t.child_frame_id = child;
+  t.transform.translation.x = x;
+  t.transform.rotation.w = 1.0;
+  return t;
+}
+}  // namespace
+
+TEST(ProjectorPoseFollower, OkPoseIsReportedOnceThenNotAgain)
+{
+  tf2_ros::Buffer tf(ros::Duration(10.0), false);
+  tf.setTransform(transform("projector", 0.0, 1.5), "test", true);
+  ProjectorPoseFollower follower;
+  EXPECT_FALSE(follower.shown());
+  ProjectorPoseFollower::Step step = follower.follow(tf, "map", "projector", 100.0, 1.0);
+  EXPECT_TRUE(step.ok);
+  EXPECT_TRUE(step.status_changed) << "first pose: the Ok status is shown";
+  EXPECT_TRUE(step.problem.empty());
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 1.5);
+  step = follower.follow(tf, "map", "projector", 100.1, 1.0);
+  EXPECT_TRUE(step.ok);
+  EXPECT_FALSE(step.status_changed) << "still Ok: nothing to show";
+  EXPECT_EQ(follower.tfAge(), 0.0) << "static transforms never age";
+  follower.forget();  // rviz's Reset cleared the statuses
+  EXPECT_FALSE(follower.shown());
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 100.2, 1.0).status_changed) << "raised again after Reset";
+}
+
+TEST(ProjectorPoseFollower, MissingAndStalePosesAreProblemsEveryFrame)
+{
+  tf2_ros::Buffer tf(ros::Duration(10.0), false);
+  ProjectorPoseFollower follower;
+  ProjectorPoseFollower::Step step = follower.follow(tf, "map", "projector", 100.0, 1.0);
+  EXPECT_FALSE(step.ok);
+  EXPECT_TRUE(step.status_changed);
+  EXPECT_FALSE(step.problem.empty());
+  EXPECT_TRUE(std::isnan(follower.tfAge())) << "no tf: no age";
+  // A moving link last heard of at t = 100 s, looked at 5 s later with a 1 s TF timeout.
+  tf.setTransform(transform("projector", 100.0, 2.0), "test", false);
+  step = follower.follow(tf, "map", "projector", 105.0, 1.0);
+  EXPECT_FALSE(step.ok) << "stale: blanked like a missing pose";
+  EXPECT_TRUE(step.status_changed);
+  EXPECT_NE(step.problem.find("projector"), std::string::npos) << step.problem;
+  EXPECT_NEAR(follower.tfAge(), 5.0, 1e-9);
+  // Fresh again: Ok, shown once.
+  step = follower.follow(tf, "map", "projector", 100.5, 1.0);
+  EXPECT_TRUE(step.ok);
+  EXPECT_TRUE(step.status_changed);
+  EXPECT_NEAR(follower.tfAge(), 0.5, 1e-9);
+  EXPECT_FALSE(follower.follow(tf, "map", "projector", 100.6, 1.0).status_changed);
+}
