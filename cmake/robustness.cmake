@@ -16,11 +16,9 @@ if(CATKIN_ENABLE_TESTING)
   # its own process and time limit, so a crash in one part does not hide the others).
   catkin_add_executable_with_gtest(test_robustness EXCLUDE_FROM_ALL
     test/rviz/robustness_test.cpp
-    test/rviz/robustness_helpers.cpp
-    test/rviz/rviz_test_fixture.cpp
-    test/rviz/rviz_test_main.cpp
   )
-  target_link_libraries(test_robustness ${PROJECT_NAME} ${catkin_LIBRARIES} Qt5::Widgets)
+  target_link_libraries(test_robustness ${PROJECT_NAME}_rviz_test_support ${PROJECT_NAME} ${catkin_LIBRARIES}
+                        Qt5::Widgets)
   target_compile_options(test_robustness PRIVATE ${${PROJECT_NAME}_WARNINGS})
   target_compile_definitions(test_robustness PRIVATE
     RVIZ_PROJECTOR_TEST_CONFIGS="${CMAKE_CURRENT_SOURCE_DIR}/test/rviz/configs")
