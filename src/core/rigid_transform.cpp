@@ -31,3 +31,57 @@ Vec3 RigidTransform::apply(const Vec3& p) const
   return rotate(p) + t_;
 }
 }  // namespace rviz_projector
+
+namespace rviz_projector
+{
+RigidTransform RigidTransform::fromMatrix(const std::array<double, 9>& rotation, const Vec3& translation)
+{
+  RigidTransform t;
+  t.r_ = rotation;
+  t.t_ = translation;
+  return t;
+}
+
+std::array<double, 4> RigidTransform::quaternion() const
+{
+  // The largest of the four diagonal combinations is the best conditioned to divide by.
+  const std::array<double, 9>& m = r_;
+  const double trace = m[0] + m[4] + m[8];
+  double x, y, z, w;
+  if (trace > 0.0)
+  {
+    const double s = 2.0 * std::sqrt(1.0 + trace);
+    w = 0.25 * s;
+    x = (m[7] - m[5]) / s;
+    y = (m[2] - m[6]) / s;
+    z = (m[3] - m[1]) / s;
+  }
+  else if (m[0] > m[4] && m[0] > m[8])
+  {
+    const double s = 2.0 * std::sqrt(1.0 + m[0] - m[4] - m[8]);
+    w = (m[7] - m[5]) / s;
+    x = 0.25 * s;
+    y = (m[1] + m[3]) / s;
+    z = (m[2] + m[6]) / s;
+  }
+  else if (m[4] > m[8])
+  {
+    const double s = 2.0 * std::sqrt(1.0 + m[4] - m[0] - m[8]);
+    w = (m[2] - m[6]) / s;
+    x = (m[1] + m[3]) / s;
+    y = 0.25 * s;
+    z = (m[5] + m[7]) / s;
+  }
+  else
+  {
+    const double s = 2.0 * std::sqrt(1.0 + m[8] - m[0] - m[4]);
+    w = (m[3] - m[1]) / s;
+    x = (m[2] + m[6]) / s;
+    y = (m[5] + m[7]) / s;
+    z = 0.25 * s;
+  }
+  const double sign = w < 0.0 ? -1.0 : 1.0;
+  const double n = std::sqrt(x * x + y * y + z * z + w * w) * sign;
+  return {x / n, y / n, z / n, w / n};
+}
+}  // namespace rviz_projector

@@ -104,6 +104,7 @@ struct Prediction
   PlanarTwist twist;     ///< the fitted (or given) twist; zero when Stopped
   double speed = 0.0;    ///< m/s, the twist's planar speed
   double newest = 0.0;   ///< stamp of the newest sample
+  double age = 0.0;      ///< s from the newest sample to `now`
   /// Whether `pose` is extrapolated (Predicted or Limited).
   bool extrapolated() const { return state == Predicted || state == Limited; }
 };
@@ -123,7 +124,8 @@ public:
     Appended,    ///< newer than every sample kept
     Inserted,    ///< out of order, put in its place
     Duplicate,   ///< a sample with this stamp is kept already (within 1 microsecond): ignored
-    TooOld,      ///< older than the history kept (or than the last jump): ignored
+    TooOld,      ///< older than the history kept (or than the last jump or gap), or out of order and
+                 ///< a jump away from the sample before it: ignored
     NotFinite,   ///< NaN/Inf stamp or pose: ignored
     Jump,        ///< a jump away from the samples before: the history before it was forgotten
     AfterGap     ///< more than max_gap after the newest: the history before it was forgotten
@@ -157,14 +159,21 @@ private:
   };
   bool isJump(const Sample& from, const Sample& to) const;
   bool stands() const;
-  /// Common checks of predict*: fills `p` with the newest pose; false when no extrapolation.
+  bool tooFast(const PlanarTwist& twist) const;
+  /// Common checks of predict*: fills `p` with the newest pose; false when there is nothing to
+  /// extrapolate (p.state says why).
   bool prepare(double now, double target, Prediction& p) const;
   PlanarTwist fit() const;
-  void extrapolate(Prediction& p, double max_horizon, const PlanarPose& from, const PlanarPose& to_at_horizon) const;
+  /// Moves p.pose along `twist` for the allowed horizon, `from` being the planar pose of the body
+  /// the twist belongs to.
+  void extrapolate(Prediction& p, double max_horizon, const PlanarPose& from, const PlanarTwist& twist) const;
+  void restart(const Sample& sample);
 
   MotionLimits limits_;
   int axis_ = 0;                  ///< the body axis whose heading is the yaw (chosen at the first sample)
   std::vector<Sample> samples_;   ///< oldest first
   bool jumped_ = false;           ///< the history starts at a jump
+  double floor_stamp_ = 0.0;      ///< samples older than this are ignored (the last jump or gap)
+  bool have_floor_ = false;
 };
 }  // namespace rviz_projector

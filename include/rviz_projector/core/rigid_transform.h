@@ -15,6 +15,11 @@ public:
   /// From a unit quaternion (x, y, z, w; normalised here) and a translation.
   static RigidTransform fromQuaternion(double qx, double qy, double qz, double qw, const Vec3& translation);
 
+  /// From a row-major rotation matrix (taken as it is: it must be a rotation) and a translation.
+  static RigidTransform fromMatrix(const std::array<double, 9>& rotation, const Vec3& translation);
+
+  /// The rotation as a unit quaternion {x, y, z, w} (w >= 0).
+  std::array<double, 4> quaternion() const;
   Vec3 apply(const Vec3& p) const;
   /// Rotates a direction (no translation).
   Vec3 rotate(const Vec3& d) const;
