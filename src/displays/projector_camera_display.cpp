@@ -106,6 +106,7 @@ void ProjectorCameraDisplay::showVisibilityStatus()
 void ProjectorCameraDisplay::onEnable()
 {
   checkMainViewCost();
+  motion_.clear();
   subscribe();
   updateOutput();
   frame_clock_.start();
@@ -197,11 +198,19 @@ void ProjectorCameraDisplay::subscribe()
   const std::string error = lens_source_.subscribe(props_.topic->getTopicStd());
   setStatus(error.empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, "Topic",
             error.empty() ? QString("OK") : "Error subscribing: " + QString::fromStdString(error));
+  updateMotionOdometry();
 }
 
 void ProjectorCameraDisplay::unsubscribe()
 {
   lens_source_.unsubscribe();
+  motion_.setOdometryTopic(std::string());
+}
+
+void ProjectorCameraDisplay::updateMotionOdometry()
+{
+  const std::string error = motion_.setOdometryTopic(isEnabled() ? props_.motion_odometry->getTopicStd() : std::string());
+  warnIf("Odometry topic", error.empty() ? QString() : "Error subscribing: " + QString::fromStdString(error));
 }
 
 void ProjectorCameraDisplay::showLensStatuses()
@@ -232,6 +241,7 @@ void ProjectorCameraDisplay::onLensChanged()
 void ProjectorCameraDisplay::applyProjection()
 {
   markChanged();
+  motion_.clear();  // the frame may have changed: earlier poses are of another frame
   projector_frame_ = props_.frame->getStdString();  // the Frame, or the CameraInfo's frame_id
   projector_frame_ = projector_frame_.empty() ? lens_source_.frameId() : projector_frame_;
   if (!view_)
@@ -347,9 +357,12 @@ bool ProjectorCameraDisplay::updateCameraPose()
   {
     fixed_frame_shown_ = fixed_frame_;
     fixed_frame_std_ = fixed_frame_.toStdString();
+    motion_.clear();
   }
-  const ProjectorPoseFollower::Step step = pose_follower_.follow(
-      *context_->getTF2BufferPtr(), fixed_frame_std_, projectorFrame(), ros::Time::now().toSec(), props_.tf_timeout->getFloat());
+  const double now = ros::Time::now().toSec();
+  tf2_ros::Buffer& tf = *context_->getTF2BufferPtr();
+  const ProjectorPoseFollower::Step step =
+      pose_follower_.follow(tf, fixed_frame_std_, projectorFrame(), now, props_.tf_timeout->getFloat());
   if (step.status_changed)  // a stale pose blanks the projector as a missing one does
   {
     setStatus(step.ok ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, QStringLiteral("Transform"),
@@ -357,9 +370,26 @@ bool ProjectorCameraDisplay::updateCameraPose()
   }
   if (step.ok)
   {
-    view_->setPose(pose_follower_.pose());
+    const MotionSettings settings{props_.motion_enabled->getBool(), props_.inputLag(), props_.maxPrediction()};
+    MotionReport report;
+    view_->setPose(motion_.follow(tf, fixed_frame_std_, pose_follower_.pose(), settings, now, frame_clock_.now(),
+                                  frame_clock_.period(), report));
+    showMotion(report);
   }
   return step.ok;
+}
+
+void ProjectorCameraDisplay::showMotion(const MotionReport& report)
+{
+  if (report.status_changed)
+  {
+    setStatus(report.level == MotionReport::Warn ? rviz::StatusProperty::Warn : rviz::StatusProperty::Ok,
+              QStringLiteral("Motion compensation"), QString::fromStdString(report.status));
+  }
+  if (report.line_changed)
+  {
+    props_.motion_state->setStdString(report.line);
+  }
 }
 
 void ProjectorCameraDisplay::updateFootprint()
@@ -471,6 +501,7 @@ void ProjectorCameraDisplay::renderNow()
     image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame());
     output_->swap();
   }
+  motion_.frameShown(frame_clock_.now(), frame_clock_.period());  // the render delay, measured
 }
 
 void ProjectorCameraDisplay::setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text)

@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projector_camera_properties.h"
 
+#include <algorithm>
+
 #include <QGuiApplication>
 #include <QScreen>
 #include <ros/message_traits.h>
@@ -12,6 +14,7 @@
 #include <rviz/properties/int_property.h>
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/string_property.h>
+#include <nav_msgs/Odometry.h>
 #include <sensor_msgs/CameraInfo.h>
 
 #include "rviz_projector/core/crosshair_pattern.h"
@@ -110,6 +113,51 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
                                                  image_output, SLOT(updateImageOutput()), display);
   image_rate->setMin(0.1f);
   image_rate->setMax(120.0f);
+  createMotionProperties(display);
+}
+
+void ProjectorCameraProperties::createMotionProperties(rviz::Display* display)
+{
+  motion = new rviz::Property(
+      "Motion compensation", QVariant(),
+      "Keeps world-locked content (arrows) still on the floor while the robot moves: each frame is drawn from the "
+      "projector pose predicted for the moment its light is on the floor (now + measured render delay + half a frame + "
+      "Projector input lag), from the projector's recent tf poses or the Odometry topic's twist.",
+      display);
+  motion_enabled = new rviz::BoolProperty(
+      "Enabled", true,
+      "Predict the projector's pose. Off: every frame is drawn from the newest tf, which is already old when the light "
+      "leaves the lens.",
+      motion);
+  motion_input_lag = new rviz::FloatProperty(
+      "Projector input lag", 0.0f,
+      "Milliseconds from a frame reaching the projector's input to its light on the floor (the projector's input lag, "
+      "from its data sheet or a review, or measured: see the README). 0 = none.",
+      motion);
+  motion_input_lag->setMin(0.0f);
+  motion_input_lag->setMax(500.0f);
+  motion_odometry = new rviz::RosTopicProperty(
+      "Odometry topic", "", QString::fromStdString(ros::message_traits::datatype<nav_msgs::Odometry>()),
+      "nav_msgs/Odometry of the robot's base (its twist, in child_frame_id): the motion to predict with, more current "
+      "than differences of tf poses. Empty: the projector's own tf poses.",
+      motion, SLOT(updateMotionOdometry()), display);
+  motion_max = new rviz::FloatProperty(
+      "Max prediction", 150.0f,
+      "Milliseconds: the longest extrapolation beyond the newest pose. A longer wanted prediction is cut here.", motion);
+  motion_max->setMin(0.0f);
+  motion_max->setMax(1000.0f);
+  motion_state = new rviz::StringProperty("Prediction", "", "What the prediction does now (read only).", motion);
+  motion_state->setReadOnly(true);
+}
+
+double ProjectorCameraProperties::inputLag() const
+{
+  return std::max(0.0f, motion_input_lag->getFloat()) * 1e-3;
+}
+
+double ProjectorCameraProperties::maxPrediction() const
+{
+  return std::max(0.0f, motion_max->getFloat()) * 1e-3;
 }
 
 TestPattern ProjectorCameraProperties::testPattern() const
@@ -152,6 +200,8 @@ QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
     check.number(config.mapGetChild(p->getName()), p);
   }
   check.number(config.mapGetChild(image_output->getName()).mapGetChild(image_rate->getName()), image_rate);
+  check.number(config.mapGetChild(motion->getName()).mapGetChild(motion_input_lag->getName()), motion_input_lag);
+  check.number(config.mapGetChild(motion->getName()).mapGetChild(motion_max->getName()), motion_max);
   return check.report();
 }
 

@@ -40,7 +40,8 @@ ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_
     }
   }
   // With ros::Time(0), tf stamps the result with the chain's latest common time (0 when all static).
-  pose.age = dataAge(t.header.stamp.toSec(), now);
+  pose.stamp = t.header.stamp.toSec();
+  pose.age = dataAge(pose.stamp, now);
   pose.state = isStale(pose.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
   pose.qx = q.x;
   pose.qy = q.y;

@@ -9,6 +9,8 @@
 //   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
 //   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
 //   ProjectorPoseFollower      the projector's pose from tf, and when its Transform status changes
+//   ProjectorMotion            motion compensation: the pose predicted for when the light is on the
+//                              floor (MotionPredictor, PhotonDelay: core), Odometry (private queue)
 //   ProjectorFrameClock        when to render: FramePacer (core) deadlines at the Frame rate limit /
 //                              screen refresh, early frames on changes, FrameRateMeter (core)
 //   StatusCache                the statuses shown: only changes reach rviz
@@ -37,6 +39,7 @@
 #include "rviz_projector/displays/projector_camera_properties.h"
 #include "rviz_projector/displays/projector_frame_clock.h"
 #include "rviz_projector/displays/projector_lens_source.h"
+#include "rviz_projector/displays/projector_motion.h"
 #include "rviz_projector/displays/projector_pose.h"
 #include "rviz_projector/displays/status_cache.h"
 #endif
@@ -91,6 +94,8 @@ public:
   std::uint32_t visibilityBit() const { return vis_bit_; }
   /// What the display is doing now (frame rate, data ages, blanking, window), for diagnostics.
   ProjectorCameraHealth health() const;
+  /// Motion compensation: the last prediction and the time it was made for.
+  const ProjectorMotion& motion() const { return motion_; }
 
 protected:
   void onInitialize() override;
@@ -118,6 +123,8 @@ private Q_SLOTS:
   void updateTestPattern();
   void updateImageOutput();
   void fillScreenOptions();
+  /// Subscribes to the Motion compensation's Odometry topic (when enabled).
+  void updateMotionOdometry();
 
 private:
   void subscribe();
@@ -130,8 +137,11 @@ private:
   void checkMainViewCost();
   /// The "Visibility" error when no visibility bit was left for this display.
   void showVisibilityStatus();
-  /// Moves the camera to the projector's latest tf pose; false (with a status) when unavailable.
+  /// Moves the camera to the projector's pose (latest tf, moved by motion compensation); false
+  /// (with a status) when unavailable.
   bool updateCameraPose();
+  /// The Motion compensation status and Prediction line, as motion_ reported them.
+  void showMotion(const MotionReport& report);
   void updateFootprint();
   /// Follows the lens and Rows/Columns; true while the projector shows the crosshairs.
   bool updateCrosshairs();
@@ -161,6 +171,7 @@ private:
   std::pair<std::uint32_t, std::uint32_t> shown_size_{0, 0};  ///< image size the window was laid out for
   bool pose_ok_ = false;
   ProjectorPoseFollower pose_follower_;
+  ProjectorMotion motion_;
   std::string projector_frame_;  ///< projectorFrame(), kept so that no frame builds it
   QString fixed_frame_shown_;    ///< the fixed frame fixed_frame_std_ was made from
   std::string fixed_frame_std_;

@@ -18,6 +18,7 @@ class Display;
 class EnumProperty;
 class FloatProperty;
 class IntProperty;
+class Property;
 class RosTopicProperty;
 class StringProperty;
 }  // namespace rviz
@@ -55,6 +56,11 @@ struct ProjectorCameraProperties
   /// The output window these properties ask for, for an image of this size (0 x 0: no lens yet),
   /// rviz's main window being on `rviz_screen`.
   OutputRequest outputRequest(std::uint32_t image_width, std::uint32_t image_height, QScreen* rviz_screen) const;
+  /// Motion compensation's settings, seconds.
+  double inputLag() const;
+  double maxPrediction() const;
+  /// Creates the Motion compensation group (issue 14).
+  void createMotionProperties(rviz::Display* display);
 
   rviz::RosTopicProperty* topic;
   rviz::StringProperty* frame;
@@ -73,5 +79,12 @@ struct ProjectorCameraProperties
   rviz::BoolProperty* image_output;
   rviz::StringProperty* image_topic;
   rviz::FloatProperty* image_rate;
+  // Motion compensation (issue 14): a group; its values are read frame by frame.
+  rviz::Property* motion;
+  rviz::BoolProperty* motion_enabled;
+  rviz::FloatProperty* motion_input_lag;    ///< ms
+  rviz::RosTopicProperty* motion_odometry;  ///< nav_msgs/Odometry, empty = tf
+  rviz::FloatProperty* motion_max;          ///< ms
+  rviz::StringProperty* motion_state;       ///< read only: what the prediction does
 };
 }  // namespace rviz_projector

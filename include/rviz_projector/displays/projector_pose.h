@@ -32,6 +32,8 @@ struct ProjectorPose
   /// fixed frame -> frame, i.e. the newest data of its least recently updated moving link; 0 for a
   /// chain of static transforms only (stamp 0), which never goes stale.
   double age = 0;
+  /// The chain's stamp, ROS time in seconds (0 for static transforms only).
+  double stamp = 0;
 };
 
 /// The pose of `frame` in `fixed_frame` at the latest time tf has for the whole chain. `now` is
