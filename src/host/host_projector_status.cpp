@@ -43,6 +43,9 @@ void fillProjectorStatus(const ProjectorCameraDisplay& projector, const std::vec
                                              seconds(health.seconds_since_last_frame));
   status.add("Frames rendered", health.frames_rendered);
   status.add("Frames skipped (nothing changed)", health.frames_skipped);
+  status.add("Motion compensation", health.prediction);
+  status.addf("Prediction ahead of newest tf (ms)", "%.1f", health.prediction_ms);
+  status.addf("Render to mid-frame delay (ms)", "%.1f", health.photon_delay_ms);
   status.add("tf age (s)", std::isnan(health.tf_age_s) ? std::string("no pose") : seconds(health.tf_age_s));
   status.add("CameraInfo age (s)",
              std::isnan(health.camera_info_age_s) ? std::string("none received") : seconds(health.camera_info_age_s));

@@ -23,5 +23,9 @@ struct ProjectorCameraHealth
   bool screen_connected = false;          ///< that screen is (still) connected
   std::uint64_t frames_rendered = 0;      ///< frames rendered into the output window so far
   std::uint64_t frames_skipped = 0;       ///< timer ticks that needed no new frame
+  bool motion_compensation = false;       ///< Motion compensation is enabled
+  std::string prediction;                 ///< what the last frame's prediction did (its Prediction line)
+  double prediction_ms = 0.0;             ///< how far ahead of the newest pose it predicted (0: not)
+  double photon_delay_ms = 0.0;           ///< measured lookup -> middle of the frame's time on screen
 };
 }  // namespace rviz_projector
