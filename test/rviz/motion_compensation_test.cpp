@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
+#include <rviz/config.h>
 #include <rviz/properties/property.h>
 #include <rviz/visualization_manager.h>
 #include <tf2/LinearMath/Transform.h>
@@ -90,6 +91,13 @@ protected:
     ros::Time::setNow(start_ + ros::Duration(t + 0.005));
     tf2::Transform base = baseAt(t);
     base.setOrigin(base.getOrigin() + displacement);
+    return publishBase(t, base);
+  }
+
+  /// The base's tf at drive time `t` straight into rviz's buffer; waits until the display predicted
+  /// from it.
+  bool publishBase(double t, const tf2::Transform& base)
+  {
     geometry_msgs::TransformStamped s;
     s.header.stamp = start_ + ros::Duration(t);
     s.header.frame_id = "map";
@@ -237,5 +245,91 @@ TEST_F(MotionCompensationTest, OdometryTwistPredictsLikeTheTfPoses)
            projector_->motion().lastPrediction().twist.wz == kYawRate;
   })) << rviz_projector::describePrediction(projector_->motion().lastPrediction());
   EXPECT_LE(drawnError([&](double t) { return onArc(t); }), kTolerance);
+}
+}  // namespace
+
+namespace
+{
+TEST_F(MotionCompensationTest, StopEndsPredictionAtOnce)
+{
+  drive();
+  ASSERT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted);
+  // The robot stops: three more samples at the same pose (40 ms unmoved).
+  const tf2::Transform stopped = baseAt(kDrive);
+  for (int i = 1; i <= 3; ++i)
+  {
+    const double t = kDrive + i * kTfPeriod;
+    ros::Time::setNow(start_ + ros::Duration(t + 0.005));
+    ASSERT_TRUE(publishBase(t, stopped));
+  }
+  EXPECT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Stopped)
+      << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+  EXPECT_LE(drawnError([&](double) { return opticalInMap(stopped); }), kTolerance) << "overshoot after a stop";
+}
+
+TEST_F(MotionCompensationTest, GapInTfDisablesPredictionWithAStatus)
+{
+  drive();
+  // No tf for 0.4 s (TF timeout is 1 s: the projector still shows the newest pose).
+  ros::Time::setNow(start_ + ros::Duration(kDrive + 0.4));
+  ASSERT_TRUE(waitFor([&] { return projector_->motion().lastPrediction().state == rviz_projector::Prediction::Gap; }))
+      << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Motion compensation").level == rviz::StatusProperty::Warn; }));
+  EXPECT_TRUE(statusOf(projector_, "Motion compensation").text.contains("gap"))
+      << statusOf(projector_, "Motion compensation").text.toStdString();
+  EXPECT_LE(drawnError([](double) { return opticalInMap(baseAt(kDrive)); }), kTolerance);
+}
+
+TEST_F(MotionCompensationTest, BadOdometryFallsBackToTfWithAWarning)
+{
+  ros::Publisher odom = nh_.advertise<nav_msgs::Odometry>("/test/bad_odom", 1);
+  motion_->subProp("Odometry topic")->setValue("/test/bad_odom");
+  drive();
+  // Nothing received yet: the tf poses predict, and the status says why.
+  EXPECT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted);
+  auto warnsAbout = [&](const char* words) {
+    return waitFor([&] {
+      const Status s = statusOf(projector_, "Motion compensation");
+      return s.level == rviz::StatusProperty::Warn && s.text.contains(words);
+    });
+  };
+  EXPECT_TRUE(warnsAbout("no Odometry received")) << statusOf(projector_, "Motion compensation").text.toStdString();
+  ASSERT_TRUE(waitFor([&] { return odom.getNumSubscribers() > 0; }));
+  nav_msgs::Odometry msg;
+  msg.header.stamp = ros::Time::now();
+  msg.child_frame_id = "base_link";
+  msg.twist.twist.linear.x = std::numeric_limits<double>::quiet_NaN();
+  odom.publish(msg);
+  EXPECT_TRUE(warnsAbout("NaN")) << statusOf(projector_, "Motion compensation").text.toStdString();
+  msg.twist.twist.linear.x = kSpeed;
+  msg.child_frame_id = "no_such_frame";
+  odom.publish(msg);
+  EXPECT_TRUE(warnsAbout("no_such_frame")) << statusOf(projector_, "Motion compensation").text.toStdString();
+  msg.child_frame_id = "base_link";
+  msg.header.stamp = ros::Time::now() - ros::Duration(2.0);
+  odom.publish(msg);
+  EXPECT_TRUE(warnsAbout("old")) << statusOf(projector_, "Motion compensation").text.toStdString();
+  // All along the tf poses kept predicting.
+  EXPECT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted);
+  EXPECT_LE(drawnError([&](double t) { return onArc(t); }), kTolerance);
+}
+
+TEST_F(MotionCompensationTest, NonsensePropertiesAreClampedAndSaved)
+{
+  motion_->subProp("Projector input lag")->setValue(-50.0);
+  motion_->subProp("Max prediction")->setValue(-1.0);
+  EXPECT_GE(motion_->subProp("Projector input lag")->getValue().toDouble(), 0.0);
+  EXPECT_GE(motion_->subProp("Max prediction")->getValue().toDouble(), 0.0);
+  motion_->subProp("Projector input lag")->setValue(30.0);
+  motion_->subProp("Max prediction")->setValue(0.0);  // no extrapolation at all
+  drive();
+  EXPECT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Limited);
+  EXPECT_LE(drawnError([](double) { return opticalInMap(baseAt(kDrive)); }), kTolerance);
+  rviz::Config saved;
+  projector_->save(saved);
+  const rviz::Config group = saved.mapGetChild("Motion compensation");
+  EXPECT_EQ(group.mapGetChild("Projector input lag").getValue().toDouble(), 30.0);
+  EXPECT_EQ(group.mapGetChild("Max prediction").getValue().toDouble(), 0.0);
+  EXPECT_EQ(group.mapGetChild("Enabled").getValue().toBool(), true);
 }
 }  // namespace
