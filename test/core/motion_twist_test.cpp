@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "motion_test_oracle.h"
 #include "rviz_projector/core/motion_predictor.h"
 
 using rviz_projector::describePrediction;
@@ -25,8 +26,14 @@ using rviz_projector::Vec3;
 
 namespace
 {
-const double kPi = std::acos(-1.0);
-const double kDeg = kPi / 180.0;
+using motion_oracle::aboutX;
+using motion_oracle::aboutY;
+using motion_oracle::aboutZ;
+using motion_oracle::kDeg;
+using motion_oracle::kOptical;
+using motion_oracle::kPi;
+using motion_oracle::pose;
+using motion_oracle::Quat;
 
 /// Angle a - b in (-pi, pi].
 double angleDiff(double a, double b)
@@ -39,28 +46,11 @@ double angleDiff(double a, double b)
   return d;
 }
 
-struct Quat
-{
-  double x, y, z, w;
-};
-/// Hamilton product: the rotation b, then a.
-Quat operator*(const Quat& a, const Quat& b)
-{
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
-}
-Quat aboutX(double a) { return {std::sin(a / 2), 0, 0, std::cos(a / 2)}; }
-/// Positive: the body's x axis tilts down (nose down).
-Quat aboutY(double a) { return {0, std::sin(a / 2), 0, std::cos(a / 2)}; }
-Quat aboutZ(double a) { return {0, 0, std::sin(a / 2), std::cos(a / 2)}; }
-/// An optical frame (z forward, x right, y down) of a body whose x axis looks forward, z up:
-/// columns x = (0, -1, 0), y = (0, 0, -1), z = (1, 0, 0).
-const Quat kOptical{-0.5, 0.5, -0.5, 0.5};
-
-RigidTransform pose(const Quat& q, const Vec3& t) { return RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, t); }
-
 /// A projector's optical frame at `t`, heading `yaw` and looking `tilt` below the horizon.
-RigidTransform projector(double yaw, double tilt, const Vec3& t) { return pose(aboutZ(yaw) * aboutY(tilt) * kOptical, t); }
+RigidTransform projector(double yaw, double tilt, const Vec3& t)
+{
+  return pose(aboutZ(yaw) * aboutY(tilt) * kOptical, t);
+}
 
 void expectPlanar(const PlanarPose& p, double x, double y, double yaw, double tol = 1e-9)
 {
@@ -131,7 +121,8 @@ TEST(IntegrateTwist, ArcIsTheClosedForm)
 {
   // From the origin: x = v/w sin(w t), y = v/w (1 - cos(w t)).
   const double v = 0.7, w = 0.6, t = 1.3;
-  expectPlanar(integrateTwist({0.0, 0.0, 0.0}, {v, 0.0, w}, t), v / w * std::sin(w * t), v / w * (1.0 - std::cos(w * t)),
+  const double r = v / w;
+  expectPlanar(integrateTwist({0.0, 0.0, 0.0}, {v, 0.0, w}, t), r * std::sin(w * t), r * (1.0 - std::cos(w * t)),
                w * t);
   // A quarter circle of radius 2 to the right.
   expectPlanar(integrateTwist({0.0, 0.0, 0.0}, {kPi, 0.0, -kPi / 2}, 1.0), 2.0, -2.0, -kPi / 2);
@@ -170,8 +161,8 @@ TEST(IntegrateTwist, ZeroTimeIsTheStart)
 TEST(TwistBetween, InvertsTheClosedFormArc)
 {
   const double v = 0.7, w = 0.6, t = 1.3;
-  expectTwist(twistBetween({0.0, 0.0, 0.0}, {v / w * std::sin(w * t), v / w * (1.0 - std::cos(w * t)), w * t}, t), v, 0.0,
-              w);
+  const double r = v / w;
+  expectTwist(twistBetween({0.0, 0.0, 0.0}, {r * std::sin(w * t), r * (1.0 - std::cos(w * t)), w * t}, t), v, 0.0, w);
   expectTwist(twistBetween({0.0, 0.0, 0.0}, {2.0, -2.0, -kPi / 2}, 1.0), kPi, 0.0, -kPi / 2);
   const PlanarPose e = arc(1.5, -2.0, 2.8, 0.9, -0.3, 1.7, 0.05);
   expectTwist(twistBetween({1.5, -2.0, 2.8}, e, 0.05), 0.9, -0.3, 1.7, 1e-7);
