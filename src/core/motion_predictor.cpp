@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace rviz_projector
 {
@@ -19,7 +20,8 @@ constexpr double kJumpYawSlack = 0.02;
 
 double wrapAngle(double a)
 {
-  return std::remainder(a, 2.0 * kPi);  // in [-pi, pi]
+  const double r = std::remainder(a, 2.0 * kPi);  // in [-pi, pi]
+  return r <= -kPi ? r + 2.0 * kPi : r;           // in (-pi, pi]
 }
 
 /// sin(t)/t and (1 - cos(t))/t, with their series near 0.
@@ -127,6 +129,8 @@ const char* predictionStateName(Prediction::State state)
       return "Gap";
     case Prediction::TooFast:
       return "TooFast";
+    case Prediction::Invalid:
+      return "Invalid";
     case Prediction::NoPose:
       break;
   }
@@ -159,6 +163,8 @@ std::string describePrediction(const Prediction& p)
     case Prediction::TooFast:
       std::snprintf(text, sizeof(text), "off: %.2f m/s, %.0f deg/s is faster than a robot drives", p.speed, deg);
       return text;
+    case Prediction::Invalid:
+      return "off: the motion data or the clock holds NaN/Inf";
     case Prediction::NoPose:
       break;
   }
@@ -326,6 +332,11 @@ bool MotionPredictor::prepare(double now, double target, Prediction& p) const
   p.newest = newest.stamp;
   p.age = now - newest.stamp;
   p.wanted = target - newest.stamp;
+  if (!std::isfinite(now) || std::isnan(target) || target == -std::numeric_limits<double>::infinity())
+  {
+    p.state = Prediction::Invalid;  // +Inf is a target too far: cut at the max horizon
+    return false;
+  }
   if (p.age > limits_.max_gap)
   {
     p.state = Prediction::Gap;
@@ -379,11 +390,21 @@ Prediction MotionPredictor::predictWithTwist(double now, double target, double m
   {
     return p;  // one fresh pose is enough with a twist given, but not just after a jump
   }
-  const bool finite = std::isfinite(base_twist.vx) && std::isfinite(base_twist.vy) && std::isfinite(base_twist.wz);
-  const double slow = limits_.stop_distance / limits_.stop_time;
-  if (!finite || (planarSpeed(base_twist) <= slow && std::abs(base_twist.wz) <= limits_.stop_angle / limits_.stop_time))
+  bool finite = std::isfinite(base_twist.vx) && std::isfinite(base_twist.vy) && std::isfinite(base_twist.wz) &&
+                isFinite(base.translation());
+  for (double v : base.rotation())
   {
-    p.state = finite ? Prediction::Stopped : Prediction::TooFast;
+    finite = finite && std::isfinite(v);
+  }
+  if (!finite)
+  {
+    p.state = Prediction::Invalid;
+    return p;
+  }
+  const double slow = limits_.stop_distance / limits_.stop_time;
+  if (planarSpeed(base_twist) <= slow && std::abs(base_twist.wz) <= limits_.stop_angle / limits_.stop_time)
+  {
+    p.state = Prediction::Stopped;
     return p;
   }
   // The twist is the base's: move the projector's pose by the motion that takes the base along it.

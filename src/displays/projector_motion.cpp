@@ -19,7 +19,8 @@ constexpr double kLineInterval = 0.25;
 
 bool isAlarm(Prediction::State state)
 {
-  return state == Prediction::Jump || state == Prediction::Gap || state == Prediction::TooFast;
+  return state == Prediction::Jump || state == Prediction::Gap || state == Prediction::TooFast ||
+         state == Prediction::Invalid;
 }
 }  // namespace
 

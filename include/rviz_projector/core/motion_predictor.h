@@ -95,7 +95,8 @@ struct Prediction
     Jump,       ///< the newest sample jumped away from the ones before: the newest pose
     Gap,        ///< the newest sample is older than max_gap: the newest pose
     TooFast,    ///< the fitted twist is faster than the limits: the newest pose
-    NoPose      ///< no sample at all: `pose` is the identity, not to be used
+    NoPose,     ///< no sample at all: `pose` is the identity, not to be used
+    Invalid     ///< the clock, the target time or a given twist/base pose is NaN/Inf: the newest pose
   };
   State state = NoPose;
   RigidTransform pose;   ///< the pose to render from
