@@ -232,6 +232,11 @@ class HostTest(unittest.TestCase):
         self.assertEqual(status.hardware_id, "projector_host")
         self.assertGreater(int(keys["Frames rendered"]), 0)
         self.assertTrue(any(k.startswith("Status / ") for k in keys), keys)
+        # Motion compensation (issue 14): on by default; the host's projector is mounted by static
+        # transforms only, so there is nothing to predict.
+        self.assertIn("Motion compensation", keys)
+        self.assertIn("Prediction ahead of newest tf (ms)", keys)
+        self.assertEqual(float(keys["Prediction ahead of newest tf (ms)"]), 0.0)
         _, config = self.latest_status("config")
         self.assertEqual(config["Main view frames"], "0", "the host rendered rviz's main view")
         for key in ("OGRE meshes", "OGRE materials", "OGRE textures", "OGRE scene nodes"):
