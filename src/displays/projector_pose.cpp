@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <tf2_ros/buffer.h>
+#include <utility>
 
 #include "rviz_projector/core/data_age.h"
 
@@ -75,10 +76,55 @@ std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_
   return std::string();
 }
 
+ProjectorPoseFollower::ProjectorPoseFollower() : tf_changes_(std::make_shared<std::atomic<std::uint64_t>>(0))
+{
+}
+
+ProjectorPoseFollower::~ProjectorPoseFollower()
+{
+  watch_.disconnect();
+}
+
+bool ProjectorPoseFollower::reusable(const tf2_ros::Buffer& tf, const std::string& fixed_frame,
+                                     const std::string& frame) const
+{
+  return looked_up_ && watched_ == &tf && looked_up_at_ == tf_changes_->load() && fixed_frame == fixed_frame_ &&
+         frame == frame_ && (pose_.state == ProjectorPose::Ok || pose_.state == ProjectorPose::Stale);
+}
+
 ProjectorPoseFollower::Step ProjectorPoseFollower::follow(tf2_ros::Buffer& tf, const std::string& fixed_frame,
                                                           const std::string& frame, double now, double timeout)
 {
-  pose_ = lookupProjectorPose(tf, fixed_frame, frame, now, timeout);
+  if (watched_ != &tf || !watch_.connected())  // a new buffer (possibly at a dead one's address)
+  {
+    watch_.disconnect();
+    std::weak_ptr<std::atomic<std::uint64_t>> changes = tf_changes_;
+    watch_ = tf._addTransformsChangedListener([changes] {
+      if (auto c = changes.lock())
+      {
+        ++*c;
+      }
+    });
+    watched_ = &tf;
+    looked_up_ = false;
+  }
+  if (reusable(tf, fixed_frame, frame))
+  {
+    // No new tf: the same pose, only older.
+    pose_.age = dataAge(pose_.stamp, now);
+    pose_.state = isStale(pose_.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
+  }
+  else
+  {
+    looked_up_at_ = tf_changes_->load();  // before the lookup: a tf arriving during it is looked up next frame
+    pose_ = lookupProjectorPose(tf, fixed_frame, frame, now, timeout);
+    looked_up_ = true;
+    if (fixed_frame != fixed_frame_ || frame != frame_)
+    {
+      fixed_frame_ = fixed_frame;
+      frame_ = frame;
+    }
+  }
   Step step;
   step.ok = pose_.state == ProjectorPose::Ok;
   step.status_changed = !step.ok || shown_ != ProjectorPose::Ok;

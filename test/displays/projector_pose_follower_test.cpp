@@ -69,3 +69,47 @@ TEST(ProjectorPoseFollower, MissingAndStalePosesAreProblemsEveryFrame)
   EXPECT_NEAR(follower.tfAge(), 0.5, 1e-9);
   EXPECT_FALSE(follower.follow(tf, "map", "projector", 100.6, 1.0).status_changed);
 }
+
+TEST(ProjectorPoseFollower, NewTfIsAlwaysLookedUpAndOldTfAgesWithoutIt)
+{
+  // The follower reuses its last lookup while tf has nothing new: what it shows must still be what
+  // a fresh lookup gives (the raw transforms are the oracle), and the age must keep growing.
+  tf2_ros::Buffer tf(ros::Duration(10.0), false);
+  tf.setTransform(transform("projector", 100.0, 1.0), "test", false);
+  ProjectorPoseFollower follower;
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 100.2, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 1.0);
+  EXPECT_NEAR(follower.tfAge(), 0.2, 1e-9);
+  // Nothing new: same pose, older; past the TF timeout it is stale.
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 100.5, 1.0).ok);
+  EXPECT_NEAR(follower.tfAge(), 0.5, 1e-9);
+  EXPECT_FALSE(follower.follow(tf, "map", "projector", 101.5, 1.0).ok) << "stale without new tf";
+  // New tf: looked up at once, fresh again.
+  tf.setTransform(transform("projector", 101.4, 3.0), "test", false);
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 101.5, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 3.0);
+  EXPECT_NEAR(follower.pose().stamp, 101.4, 1e-9);
+  // Another frame with no new tf is another lookup, not the old frame's pose.
+  tf.setTransform(transform("other", 0.0, 7.0), "test", true);
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 101.5, 1.0).ok);
+  EXPECT_TRUE(follower.follow(tf, "map", "other", 101.5, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 7.0);
+  // A transform of a link that is not in the chain changes nothing shown.
+  tf.setTransform(transform("unrelated", 101.5, 9.0), "test", false);
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 101.5, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 3.0);
+}
+
+TEST(ProjectorPoseFollower, AnotherBufferIsLookedUpAfresh)
+{
+  ProjectorPoseFollower follower;
+  {
+    tf2_ros::Buffer first(ros::Duration(10.0), false);
+    first.setTransform(transform("projector", 0.0, 1.0), "test", true);
+    EXPECT_TRUE(follower.follow(first, "map", "projector", 100.0, 1.0).ok);
+  }
+  tf2_ros::Buffer second(ros::Duration(10.0), false);
+  second.setTransform(transform("projector", 0.0, 2.0), "test", true);
+  EXPECT_TRUE(follower.follow(second, "map", "projector", 100.0, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 2.0);
+}

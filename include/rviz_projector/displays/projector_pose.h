@@ -3,7 +3,12 @@
 // whether that pose is too old to show (TF timeout: tf data older than it blanks the projector).
 #pragma once
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <string>
+
+#include <boost/signals2/connection.hpp>
 
 #include "rviz_projector/core/rigid_transform.h"
 
@@ -45,10 +50,18 @@ std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_
                             double timeout);
 
 /// The projector's pose frame after frame, and when the Transform status must change. A pose that
-/// stays Ok (steady state, or the robot driving) builds no status text.
+/// stays Ok (steady state, or the robot driving) builds no status text. It watches the tf buffer
+/// for new transforms (tf2's transforms-changed signal): a frame with no new tf since the last
+/// lookup and the same frames reuses that lookup (only its age is recomputed), so a still robot
+/// costs no tf lookup (and no allocation) per frame.
 class ProjectorPoseFollower
 {
 public:
+  ProjectorPoseFollower();
+  ~ProjectorPoseFollower();
+  ProjectorPoseFollower(const ProjectorPoseFollower&) = delete;
+  ProjectorPoseFollower& operator=(const ProjectorPoseFollower&) = delete;
+
   struct Step
   {
     bool ok = false;              ///< pose() is usable
@@ -68,7 +81,17 @@ public:
   double tfAge() const;
 
 private:
+  /// Whether pose_ is still what tf would say for these frames (no new tf since it was looked up).
+  bool reusable(const tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame) const;
+
   ProjectorPose pose_;
   int shown_ = -1;  ///< the ProjectorPose::State whose status is shown, -1 for none
+  /// Bumped by tf's thread at every transform added; shared so that a late signal finds it alive.
+  std::shared_ptr<std::atomic<std::uint64_t>> tf_changes_;
+  boost::signals2::connection watch_;
+  const tf2_ros::Buffer* watched_ = nullptr;
+  std::uint64_t looked_up_at_ = 0;  ///< tf_changes_ when pose_ was looked up
+  bool looked_up_ = false;
+  std::string fixed_frame_, frame_;  ///< the frames pose_ was looked up for
 };
 }  // namespace rviz_projector
