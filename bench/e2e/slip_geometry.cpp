@@ -103,7 +103,7 @@ StripePattern StripePattern::forMotion(Motion m)
       p.y_max_ = 1.6;
       break;
     case Motion::SCurve:
-      p.normal_angle_ = 45.0 * kDeg;
+      p.normal_angle_ = 90.0 * kDeg;
       p.pitch_ = 0.2;
       p.x_min_ = -1.5;
       p.x_max_ = 13.0;
@@ -129,8 +129,8 @@ std::vector<Stripe> StripePattern::stripes() const
     }
     return out;
   }
-  // Lines n . p = k pitch, direction d = (-n.y, n.x), clipped to y_min .. y_max (their x then runs
-  // past the box by at most the box height times tan of the normal angle: harmless).
+  // Lines n . p = k pitch, direction d = (-n.y, n.x), clipped along their steeper axis to the box
+  // (the other coordinate may run past it a little: harmless).
   const Vec2 n{std::cos(normal_angle_), std::sin(normal_angle_)};
   const Vec2 d{-n.y, n.x};
   const double corners[4][2] = {{x_min_, y_min_}, {x_min_, y_max_}, {x_max_, y_min_}, {x_max_, y_max_}};
@@ -144,8 +144,10 @@ std::vector<Stripe> StripePattern::stripes() const
   for (long k = static_cast<long>(std::ceil(s_min / pitch_)); k * pitch_ <= s_max; ++k)
   {
     const double s = k * pitch_;
-    // Points s n + t d with y in [y_min, y_max]: t = (y - s n.y) / d.y (d.y = n.x > 0).
-    const double t0 = (y_min_ - s * n.y) / d.y, t1 = (y_max_ - s * n.y) / d.y;
+    // Points s n + t d with y in [y_min, y_max] (lines steeper than 45 deg) or x in [x_min, x_max].
+    const bool by_y = std::abs(d.y) >= std::abs(d.x);
+    const double t0 = by_y ? (y_min_ - s * n.y) / d.y : (x_min_ - s * n.x) / d.x;
+    const double t1 = by_y ? (y_max_ - s * n.y) / d.y : (x_max_ - s * n.x) / d.x;
     out.push_back(Stripe{Vec2{s * n.x + t0 * d.x, s * n.y + t0 * d.y}, Vec2{s * n.x + t1 * d.x, s * n.y + t1 * d.y}});
   }
   return out;

@@ -62,8 +62,9 @@ struct StripeDistance
  *    under the row moves along the row, across these lines.
  *  - straight: parallel lines 0.2 m apart, their normal 20 deg from the direction of travel (+x):
  *    across-stripe slip = cos 20 deg = 0.94 of the slip along the travel.
- *  - scurve: parallel lines 0.2 m apart, normal 45 deg from +x (the heading swings +-0.6 rad, so
- *    the lines never lie along the row).
+ *  - scurve: lines along the mean travel (+x), 0.2 m apart: under the row the floor moves mostly
+ *    sideways (yaw rate x 1.7 m = 1.0 m/s against 0.7 m/s forward); the heading swings +-0.6 rad,
+ *    so they cross the row at 56 .. 90 deg, and the motion across them is 0.47 .. 1.25 m/s.
  */
 class StripePattern
 {

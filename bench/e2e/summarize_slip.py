@@ -141,7 +141,7 @@ def main(argv):
     print()
     print("Stripes (map frame, 10 mm wide, white on black): still/turn: radial every 7.5 deg around the turning centre;")
     print("straight: 0.2 m apart, normal 20 deg from the travel (across-stripe = 0.94 x the slip along the travel);")
-    print("S-curve: 0.2 m apart, normal 45 deg from the mean heading. Sampled row: image row 100 (~1.6 m ahead of the")
+    print("S-curve: along the mean heading, 0.2 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Sampled row: image row 100 (~1.6 m ahead of the")
     print("projector, ~1.5 mm of floor per pixel across the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high.")
 
 
