@@ -90,13 +90,13 @@ StripePattern StripePattern::forMotion(Motion m)
     case Motion::Still:
     case Motion::Turn:
       p.radial_ = true;
-      p.angle_step_ = 7.5 * kDeg;
+      p.angle_step_ = 10.0 * kDeg;
       p.r_min_ = 0.8;
       p.r_max_ = 3.0;
       break;
     case Motion::Straight:
       p.normal_angle_ = 20.0 * kDeg;
-      p.pitch_ = 0.2;
+      p.pitch_ = 0.3;
       p.x_min_ = -0.5;
       p.x_max_ = 17.0;
       p.y_min_ = -1.6;
@@ -104,7 +104,7 @@ StripePattern StripePattern::forMotion(Motion m)
       break;
     case Motion::SCurve:
       p.normal_angle_ = 90.0 * kDeg;
-      p.pitch_ = 0.2;
+      p.pitch_ = 0.3;
       p.x_min_ = -1.5;
       p.x_max_ = 13.0;
       p.y_min_ = -2.6;

@@ -118,7 +118,7 @@ def main(argv):
                 failed = [(t, fig_key, limit) for t, fig_key, limit in TARGETS
                           if cont is None or not cont[fig_key] <= limit]
                 check = "PASS" if not failed else "FAIL: " + ", ".join(
-                    "%s %s" % (fig_key.replace("abs_", "|mean| "), fmt(cont, fig_key)) for _, fig_key, _ in failed)
+                    "%s %s" % (fig_key.replace("abs_mean", "|mean|"), fmt(cont, fig_key)) for _, fig_key, _ in failed)
                 verdicts.append((label, lag, check))
             name = "%s, lag %g" % (setting, lag)
             print("%-32s %-12s %6s / %5s / %5s  %6s   %6s / %5s / %5s  %6s   %8.1f  %s" % (
@@ -139,9 +139,9 @@ def main(argv):
             setting, "lag %g" % lag, motion, m.get("samples_per_s", math.nan), m.get("crossings_ambiguous", 0),
             m.get("samples_without_stripes", 0), m.get("max_gap_ms", math.nan)))
     print()
-    print("Stripes (map frame, 10 mm wide, white on black): still/turn: radial every 7.5 deg around the turning centre;")
-    print("straight: 0.2 m apart, normal 20 deg from the travel (across-stripe = 0.94 x the slip along the travel);")
-    print("S-curve: along the mean heading, 0.2 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Sampled row: image row 100 (~1.6 m ahead of the")
+    print("Stripes (map frame, 10 mm wide, white on black): still/turn: radial every 10 deg around the turning centre;")
+    print("straight: 0.3 m apart, normal 20 deg from the travel (across-stripe = 0.94 x the slip along the travel);")
+    print("S-curve: along the mean heading, 0.3 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Sampled row: image row 100 (~1.6 m ahead of the")
     print("projector, ~1.5 mm of floor per pixel across the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high.")
 
 
