@@ -88,15 +88,23 @@ StripePattern StripePattern::forMotion(Motion m)
   switch (m)
   {
     case Motion::Still:
+      // Lines at 45 deg to the row: a column error and a row error both show (~1 mm per pixel).
+      p.normal_angle_ = 45.0 * kDeg;
+      p.pitch_ = 0.3;
+      p.x_min_ = 0.0;
+      p.x_max_ = 3.0;
+      p.y_min_ = -1.6;
+      p.y_max_ = 1.6;
+      break;
     case Motion::Turn:
       p.radial_ = true;
-      p.angle_step_ = 10.0 * kDeg;
+      p.angle_step_ = 12.0 * kDeg;
       p.r_min_ = 0.8;
       p.r_max_ = 3.0;
       break;
     case Motion::Straight:
       p.normal_angle_ = 20.0 * kDeg;
-      p.pitch_ = 0.3;
+      p.pitch_ = 0.4;
       p.x_min_ = -0.5;
       p.x_max_ = 17.0;
       p.y_min_ = -1.6;
@@ -104,7 +112,7 @@ StripePattern StripePattern::forMotion(Motion m)
       break;
     case Motion::SCurve:
       p.normal_angle_ = 90.0 * kDeg;
-      p.pitch_ = 0.3;
+      p.pitch_ = 0.4;
       p.x_min_ = -1.5;
       p.x_max_ = 13.0;
       p.y_min_ = -2.6;

@@ -58,11 +58,13 @@ struct StripeDistance
 /**
  * The stripes laid out for one motion, chosen so they cross the sampled image row (which lies
  * across the robot's heading, ~1.6 m ahead of the projector) at a good angle:
- *  - still, turn: radial lines around (0, 0) every 10 deg, 0.8 .. 3.0 m from the centre: the floor
- *    under the row moves along the row, across these lines.
- *  - straight: parallel lines 0.3 m apart, their normal 20 deg from the direction of travel (+x):
+ *  - still: parallel lines 0.3 m apart at 45 deg to the row (an error in the image column or row
+ *    of the sampled pixels, or in the mount, shows as about 1 mm per pixel).
+ *  - turn: radial lines around (0, 0) every 12 deg, 0.8 .. 3.0 m from the centre: the floor under
+ *    the row moves along the row, across these lines.
+ *  - straight: parallel lines 0.4 m apart, their normal 20 deg from the direction of travel (+x):
  *    across-stripe slip = cos 20 deg = 0.94 of the slip along the travel.
- *  - scurve: lines along the mean travel (+x), 0.3 m apart: under the row the floor moves mostly
+ *  - scurve: lines along the mean travel (+x), 0.4 m apart: under the row the floor moves mostly
  *    sideways (yaw rate x 1.7 m = 1.0 m/s against 0.7 m/s forward); the heading swings +-0.6 rad,
  *    so they cross the row at 56 .. 90 deg, and the motion across them is 0.47 .. 1.25 m/s.
  */

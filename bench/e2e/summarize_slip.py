@@ -139,10 +139,13 @@ def main(argv):
             setting, "lag %g" % lag, motion, m.get("samples_per_s", math.nan), m.get("crossings_ambiguous", 0),
             m.get("samples_without_stripes", 0), m.get("max_gap_ms", math.nan)))
     print()
-    print("Stripes (map frame, 10 mm wide, white on black): still/turn: radial every 10 deg around the turning centre;")
-    print("straight: 0.3 m apart, normal 20 deg from the travel (across-stripe = 0.94 x the slip along the travel);")
-    print("S-curve: along the mean heading, 0.3 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Sampled row: image row 100 (~1.6 m ahead of the")
-    print("projector, ~1.5 mm of floor per pixel across the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high.")
+    print("Stripes (map frame, 10 mm wide, white on black): still: 0.3 m apart at 45 deg to the row (a pixel of error in")
+    print("the sampled column or row shows as ~1 mm); turn: radial every 12 deg around the turning centre; straight: 0.4 m")
+    print("apart, normal 20 deg from the travel (across-stripe = 0.94 x the slip along the travel); S-curve: along the mean")
+    print("heading, 0.4 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Crossings farther than 0.4 pitch from")
+    print("a stripe are left out (ambiguous). Sampled row: image row 100 (~1.6 m ahead of the projector, ~1.5 mm of floor")
+    print("per pixel along the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high, beam axis on the floor 1 m ahead.")
+    print("Frames come at the robot's tf rate (50/s): the ProjectorCamera renders only when something shown changed.")
 
 
 if __name__ == "__main__":
