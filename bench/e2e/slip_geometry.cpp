@@ -225,12 +225,16 @@ Vec2 pointVelocity(const RobotState& state, const Vec2& p)
   return Vec2{state.vx - state.yaw_rate * (p.y - state.y), state.vy + state.yaw_rate * (p.x - state.x)};
 }
 
-double slipAt(const StripePattern& pattern, const RobotState& state, const Vec2& p, bool& ambiguous)
+double slipAt(const StripePattern& pattern, const RobotState& state, const Vec2& p, bool& ambiguous, double* speed)
 {
   const StripeDistance d = pattern.nearest(p);
   ambiguous = std::abs(d.distance) > 0.4 * d.pitch;
   const Vec2 v = pointVelocity(state, p);
   const double along = d.normal.x * v.x + d.normal.y * v.y;
+  if (speed)
+  {
+    *speed = std::abs(along);
+  }
   return along < 0.0 ? -d.distance : d.distance;
 }
 }  // namespace slip

@@ -114,7 +114,9 @@ Vec2 pointVelocity(const RobotState& state, const Vec2& p);
  * Slip of a stripe drawn through floor point p (where a lit pixel lands): its signed distance
  * across the nearest true stripe, in metres, positive when it lies displaced along the motion of
  * the robot at that point (content drawn from an older pose: it lags behind the motion).
- * `ambiguous` is set when the distance is over 0.4 of the stripe pitch (cannot tell which stripe).
+ * `ambiguous` is set when the distance is over 0.4 of the stripe pitch (cannot tell which stripe);
+ * `speed` (if given) receives how fast the floor under p moves across that stripe (m/s, >= 0).
  */
-double slipAt(const StripePattern& pattern, const RobotState& state, const Vec2& p, bool& ambiguous);
+double slipAt(const StripePattern& pattern, const RobotState& state, const Vec2& p, bool& ambiguous,
+              double* speed = nullptr);
 }  // namespace slip

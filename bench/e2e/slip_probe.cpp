@@ -16,9 +16,10 @@
 // along the robot's motion at that point (drawn from an older pose: it lags behind the motion).
 //
 // Output (--out, appended, tab separated):
-//   slip  SETTING  LAG_MS  MOTION  T_MS  APPEAR  SLIP_MM     one per stripe crossing per sample
+//   slip  SETTING  LAG_MS  MOTION  T_MS  APPEAR  SLIP_MM  SPEED   one per crossing per sample
 //   meta  SETTING  LAG_MS  MOTION  KEY   VALUE                 samples, frames, rates, misses
-// APPEAR is 1 when the row differed from the previous sample (a new frame showed up), else 0.
+// APPEAR is 1 when the row differed from the previous sample (a new frame showed up), else 0;
+// SPEED (m/s) is how fast the floor there moves across the stripe (slip / speed = the delay).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -371,6 +372,7 @@ private:
     bool appear;
     int lag_index;
     float slip_mm;
+    float speed;
   };
 
   void measure(Motion m)
@@ -424,14 +426,15 @@ private:
           slip::Vec2 p;
           if (!slip::floorPoint(projector_, state, (x + 0.5) * scale_x_ - 0.5, v_, p)) continue;
           bool unsure = false;
-          const double s = slip::slipAt(pattern, state, p, unsure);
+          double speed = 0.0;
+          const double s = slip::slipAt(pattern, state, p, unsure, &speed);
           if (unsure)
           {
             ++ambiguous[k];
             continue;
           }
           crossings.push_back(Crossing{static_cast<float>(1000.0 * (t - start).toSec()), appear, static_cast<int>(k),
-                                       static_cast<float>(1000.0 * s)});
+                                       static_cast<float>(1000.0 * s), static_cast<float>(speed)});
         }
       }
     }
@@ -451,9 +454,9 @@ private:
     char line[160];
     for (const Crossing& c : crossings)
     {
-      std::snprintf(line, sizeof line, "slip\t%s\t%g\t%s\t%.1f\t%d\t%.3f\n", o_.setting.c_str(),
+      std::snprintf(line, sizeof line, "slip\t%s\t%g\t%s\t%.1f\t%d\t%.3f\t%.3f\n", o_.setting.c_str(),
                     o_.truth_lags_ms[static_cast<std::size_t>(c.lag_index)], name.c_str(), c.t_ms, c.appear ? 1 : 0,
-                    c.slip_mm);
+                    c.slip_mm, c.speed);
       lines += line;
     }
     write(lines);

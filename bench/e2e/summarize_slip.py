@@ -4,11 +4,12 @@
 usage: summarize_slip.py SLIP.tsv [MACHINE.txt] [--note TEXT]...
 
 SLIP.tsv lines (tab separated), from rviz_projector_slip_probe:
-  slip  SETTING  LAG_MS  MOTION  T_MS  APPEAR  SLIP_MM
+  slip  SETTING  LAG_MS  MOTION  T_MS  APPEAR  SLIP_MM  [SPEED_M_PER_S]
   meta  SETTING  LAG_MS  MOTION  KEY   VALUE
 Prints, per motion and setting (compensation off/on x projector lag 0/30 ms), median, 95th
-percentile and max of |slip| and the mean signed slip, continuous (every sample) and at
-appearance (samples where a new frame showed up), and the targets with compensation.
+percentile and max of |slip|, the mean signed slip and the delay it amounts to (mean slip / mean
+speed across the stripes), continuous (every sample) and at appearance (samples where a new frame
+showed up), and the targets with compensation.
 """
 import collections
 import math
@@ -37,12 +38,14 @@ def percentile(sorted_values, q):
     return sorted_values[lo] + (sorted_values[hi] - sorted_values[lo]) * (pos - lo)
 
 
-def figures(values):
+def figures(values, speeds):
     if not values:
         return None
     magnitudes = sorted(abs(v) for v in values)
     mean = sum(values) / len(values)
+    mean_speed = sum(speeds) / len(speeds) if len(speeds) == len(values) else 0.0
     return {
+        "delay": mean / mean_speed if mean_speed > 0.05 else math.nan,  # mm / (m/s) = ms
         "median": percentile(magnitudes, 0.5),
         "p95": percentile(magnitudes, 0.95),
         "max": magnitudes[-1],
@@ -53,24 +56,31 @@ def figures(values):
 
 
 def load(path):
-    slips = collections.defaultdict(lambda: ([], []))  # (setting, lag, motion) -> (all, appear)
+    # (setting, lag, motion) -> (all slips, at appearance, all speeds, speeds at appearance)
+    slips = collections.defaultdict(lambda: ([], [], [], []))
     meta = collections.defaultdict(dict)
     with open(path) as f:
         for line in f:
             parts = line.rstrip("\n").split("\t")
-            if parts[0] == "slip" and len(parts) == 7:
+            if parts[0] == "slip" and len(parts) in (7, 8):
                 key = (parts[1], float(parts[2]), parts[3])
                 value = float(parts[6])
                 slips[key][0].append(value)
                 if parts[5] == "1":
                     slips[key][1].append(value)
+                if len(parts) == 8:
+                    slips[key][2].append(float(parts[7]))
+                    if parts[5] == "1":
+                        slips[key][3].append(float(parts[7]))
             elif parts[0] == "meta" and len(parts) == 6:
                 meta[(parts[1], float(parts[2]), parts[3])][parts[4]] = float(parts[5])
     return slips, meta
 
 
 def fmt(fig, key):
-    return "-" if fig is None else ("%+.1f" if key == "mean" else "%.1f") % fig[key]
+    if fig is None or math.isnan(fig[key]):
+        return "-"
+    return ("%+.1f" if key in ("mean", "delay") else "%.1f") % fig[key]
 
 
 def main(argv):
@@ -93,25 +103,29 @@ def main(argv):
     settings = sorted({(k[0], k[1]) for k in slips} | {(k[0], k[1]) for k in meta if k[2] != "setup"},
                       key=lambda s: (s[0] != "off", s[1]))
     print("Motion slip of world-locked floor stripes (issue 14): rviz --disable-anti-aliasing, ProjectorCamera 60 Hz limit,")
-    print("robot tf 50 Hz; |slip| in mm across the stripe (median / p95 / max) and mean signed slip (+ = lags behind the motion).")
+    print("robot tf 50 Hz; |slip| in mm across the stripe (median / p95 / max), mean signed slip (+ = lags behind the motion)")
+    print("and the delay it amounts to in ms (mean slip / mean speed of the floor across the stripes).")
     print("continuous = every ~1 ms sample of one row of the projector window (what a person sees); at appearance = samples")
     print("where a new frame showed up. lag = simulated projector input lag (added to the truth; 'on, lag 30' sets")
     print("Projector input lag: 30 ms).")
     for note in notes:
         print("NOTE: " + note)
     print()
-    header = "%-32s %-12s %27s   %27s   %8s  %s" % ("motion", "setting", "continuous: med / p95 / max  mean",
-                                                  "appearance: med / p95 / max  mean", "frames/s", "targets (with compensation)")
+    header = "%-30s %-11s %-40s %-40s %-8s %s" % (
+        "motion", "setting", "continuous: med / p95 / max  mean  delay", "appearance: med / p95 / max  mean  delay",
+        "frames/s", "targets (with compensation)")
     print(header)
     print("-" * len(header))
     verdicts = []
     for motion, label in MOTIONS:
+        printed = False
         for setting, lag in settings:
             key = (setting, lag, motion)
             if key not in slips and key not in meta:
                 continue
-            cont = figures(slips[key][0]) if key in slips else None
-            appear = figures(slips[key][1]) if key in slips else None
+            printed = True
+            cont = figures(slips[key][0], slips[key][2]) if key in slips else None
+            appear = figures(slips[key][1], slips[key][3]) if key in slips else None
             fps = meta.get(key, {}).get("frames_per_s", math.nan)
             check = ""
             if setting == "on" and motion != "still":
@@ -121,10 +135,12 @@ def main(argv):
                     "%s %s" % (fig_key.replace("abs_mean", "|mean|"), fmt(cont, fig_key)) for _, fig_key, _ in failed)
                 verdicts.append((label, lag, check))
             name = "%s, lag %g" % (setting, lag)
-            print("%-32s %-12s %6s / %5s / %5s  %6s   %6s / %5s / %5s  %6s   %8.1f  %s" % (
+            print("%-30s %-11s %6s / %5s / %5s  %6s  %5s    %6s / %5s / %5s  %6s  %5s    %6.1f   %s" % (
                 label, name, fmt(cont, "median"), fmt(cont, "p95"), fmt(cont, "max"), fmt(cont, "mean"),
-                fmt(appear, "median"), fmt(appear, "p95"), fmt(appear, "max"), fmt(appear, "mean"), fps, check))
-        print()
+                fmt(cont, "delay"), fmt(appear, "median"), fmt(appear, "p95"), fmt(appear, "max"),
+                fmt(appear, "mean"), fmt(appear, "delay"), fps, check))
+        if printed:
+            print()
     print("Targets with compensation, every motion: continuous median <= 6 mm, p95 <= 12 mm, |mean signed| <= 2 mm.")
     if verdicts:
         passed = sum(1 for v in verdicts if v[2] == "PASS")
