@@ -107,12 +107,13 @@ def main(argv):
     print("and the delay it amounts to in ms (mean slip / mean speed of the floor across the stripes).")
     print("continuous = every ~1 ms sample of one row of the projector window (what a person sees); at appearance = samples")
     print("where a new frame showed up. lag = simulated projector input lag (added to the truth; 'on, lag 30' sets")
-    print("Projector input lag: 30 ms).")
+    print("Projector input lag: 30 ms; 'off, lag 0' and 'off, lag 30' are the same run: without compensation the rendering")
+    print("does not depend on the projector's lag).")
     for note in notes:
         print("NOTE: " + note)
     print()
-    header = "%-30s %-11s %-40s %-40s %-8s %s" % (
-        "motion", "setting", "continuous: med / p95 / max  mean  delay", "appearance: med / p95 / max  mean  delay",
+    header = "%-30s %-11s %-42s %-41s %-8s %s" % (
+        "motion", "setting", "  continuous: med / p95 / max  mean  delay", "appearance: med / p95 / max  mean  delay",
         "frames/s", "targets (with compensation)")
     print(header)
     print("-" * len(header))
