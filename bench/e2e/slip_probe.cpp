@@ -18,6 +18,10 @@
 // Output (--out, appended, tab separated):
 //   slip  SETTING  LAG_MS  MOTION  T_MS  APPEAR  SLIP_MM  SPEED   one per crossing per sample
 //   meta  SETTING  LAG_MS  MOTION  KEY   VALUE                 samples, frames, rates, misses
+// --tf-lead-ms D checks the bench itself: tf then carries, stamped now, the pose of now + D (an
+// ideal predictor outside the pipeline, for a constant delay D): the slip must drop to what the
+// hold between frames alone makes.
+//
 // APPEAR is 1 when the row differed from the previous sample (a new frame showed up), else 0;
 // SPEED (m/s) is how fast the floor there moves across the stripe (slip / speed = the delay).
 #include <algorithm>
@@ -85,6 +89,7 @@ struct Options
   int row = 100;             // image row sampled
   double rate = 1000.0;      // samples/s
   int threshold = 64;        // a pixel is lit when a colour channel reaches this
+  double tf_lead_ms = 0.0;   // check of the bench itself: tf carries the pose this much ahead
   std::string out;
 };
 
@@ -121,6 +126,7 @@ Options parseOptions(int argc, char** argv)
     else if (a == "--row") o.row = std::stoi(value());
     else if (a == "--rate") o.rate = std::stod(value());
     else if (a == "--threshold") o.threshold = std::stoi(value());
+    else if (a == "--tf-lead-ms") o.tf_lead_ms = std::stod(value());
     else if (a == "--out") o.out = value();
     else if (a.rfind("__", 0) == 0 || a.find(":=") != std::string::npos) continue;  // ROS remaps
     else fail("unknown option " + a);
@@ -298,7 +304,7 @@ private:
       next += std::chrono::milliseconds(20);
       std::this_thread::sleep_until(next);
       const ros::Time now = ros::Time::now();
-      const slip::RobotState s = robot_.at(now);
+      const slip::RobotState s = robot_.at(now + ros::Duration(o_.tf_lead_ms / 1000.0));
       geometry_msgs::TransformStamped t;
       t.header.stamp = now;
       t.header.frame_id = "map";
