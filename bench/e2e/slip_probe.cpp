@@ -3,7 +3,8 @@
 //
 // The robot: base_link follows an analytic trajectory (bench/e2e/slip_geometry.h: still, turn in
 // place at 0.5 rad/s, straight at 1 m/s, S-curve at 0.7 m/s with +-0.6 rad/s) in the fixed frame
-// map; tf map -> base_link at 50 Hz stamped with ros::Time::now() and the pose of that instant;
+// map; tf map -> base_link at 50 Hz (--tf-rate) stamped with ros::Time::now() and the pose of that
+// instant, and the same motion as nav_msgs/Odometry on /slip/odom (twist in base_link);
 // the demo's projector mount as a static base_link -> projector_optical_frame and its CameraInfo
 // (latched, /projector/camera_info). World-locked thin white stripes on the floor (a latched
 // visualization_msgs/Marker TRIANGLE_LIST in map, one pattern per motion).
@@ -38,6 +39,7 @@
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <tf2/LinearMath/Matrix3x3.h>
@@ -90,6 +92,7 @@ struct Options
   double rate = 1000.0;      // samples/s
   int threshold = 64;        // a pixel is lit when a colour channel reaches this
   double tf_lead_ms = 0.0;   // check of the bench itself: tf carries the pose this much ahead
+  double tf_rate = 50.0;     // Hz of map -> base_link (and of the odometry)
   std::string out;
 };
 
@@ -127,12 +130,13 @@ Options parseOptions(int argc, char** argv)
     else if (a == "--rate") o.rate = std::stod(value());
     else if (a == "--threshold") o.threshold = std::stoi(value());
     else if (a == "--tf-lead-ms") o.tf_lead_ms = std::stod(value());
+    else if (a == "--tf-rate") o.tf_rate = std::stod(value());
     else if (a == "--out") o.out = value();
     else if (a.rfind("__", 0) == 0 || a.find(":=") != std::string::npos) continue;  // ROS remaps
     else fail("unknown option " + a);
   }
   if (o.truth_lags_ms.empty() || o.motions.empty()) fail("--truth-lags and --motions need values");
-  if (o.rate <= 0.0 || o.trial <= 0.0) fail("--rate and --trial must be positive");
+  if (o.rate <= 0.0 || o.trial <= 0.0 || o.tf_rate <= 0.0) fail("--rate, --trial and --tf-rate must be positive");
   return o;
 }
 
@@ -248,6 +252,7 @@ public:
     checkMount();
     info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("/projector/camera_info", 1, true);
     marker_pub_ = nh_.advertise<visualization_msgs::Marker>("/slip/stripes", 1, true);
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/slip/odom", 10);
   }
 
   void run()
@@ -298,10 +303,11 @@ private:
   void publishTf()
   {
     tf2_ros::TransformBroadcaster broadcaster;
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o_.tf_rate));
     auto next = Clock::now();
     while (!stop_ && ros::ok())
     {
-      next += std::chrono::milliseconds(20);
+      next += period;
       std::this_thread::sleep_until(next);
       const ros::Time now = ros::Time::now();
       const slip::RobotState s = robot_.at(now + ros::Duration(o_.tf_lead_ms / 1000.0));
@@ -318,6 +324,17 @@ private:
       t.transform.rotation.z = q.z();
       t.transform.rotation.w = q.w();
       broadcaster.sendTransform(t);
+      // The same motion as nav_msgs/Odometry (twist in base_link), for the Odometry topic property.
+      nav_msgs::Odometry odom;
+      odom.header = t.header;
+      odom.child_frame_id = "base_link";
+      odom.pose.pose.position.x = s.x;
+      odom.pose.pose.position.y = s.y;
+      odom.pose.pose.orientation = t.transform.rotation;
+      odom.twist.twist.linear.x = std::cos(s.yaw) * s.vx + std::sin(s.yaw) * s.vy;
+      odom.twist.twist.linear.y = -std::sin(s.yaw) * s.vx + std::cos(s.yaw) * s.vy;
+      odom.twist.twist.angular.z = s.yaw_rate;
+      odom_pub_.publish(odom);
     }
   }
 
@@ -494,7 +511,7 @@ private:
   Robot robot_;
   std::ofstream out_;
   ros::NodeHandle nh_;
-  ros::Publisher info_pub_, marker_pub_;
+  ros::Publisher info_pub_, marker_pub_, odom_pub_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::thread tf_thread_;
   std::atomic<bool> stop_{false};
