@@ -3,6 +3,8 @@
 #    ProjectedPath CPU update, each next to a re-implementation of the reference pipeline, and of
 #    the mount calibration's solver.
 #  - rviz_projector_bench_probe: the end-to-end bench's X11 probe and ROS driver (scripts/bench --e2e).
+#  - rviz_projector_slip_probe: the motion slip bench's synthetic robot and one-row X11 probe
+#    (scripts/bench --slip).
 #  - rviz_projector_allocbench: heap allocations per projector frame and RSS, in a real rviz with a
 #    ProjectorCamera (scripts/bench --alloc; needs an X server and a ROS master).
 # Each is skipped, with a message, when its libraries are missing.
@@ -45,6 +47,14 @@ if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
     ${X11_Xdamage_LIB} ${X11_Xfixes_LIB})
   target_compile_options(${PROJECT_NAME}_bench_probe PRIVATE ${${PROJECT_NAME}_WARNINGS})
   add_dependencies(${PROJECT_NAME}_bench_probe ${catkin_EXPORTED_TARGETS})
+  # The motion slip bench (scripts/bench --slip): synthetic robot + one-row probe (issue 14).
+  #catkin_lint: ignore uninstalled_target
+  add_executable(${PROJECT_NAME}_slip_probe bench/e2e/slip_geometry.cpp bench/e2e/slip_probe.cpp bench/e2e/slip_x11.cpp)
+  set_target_properties(${PROJECT_NAME}_slip_probe PROPERTIES AUTOMOC OFF)
+  target_include_directories(${PROJECT_NAME}_slip_probe SYSTEM PRIVATE ${X11_INCLUDE_DIR})
+  target_link_libraries(${PROJECT_NAME}_slip_probe ${catkin_LIBRARIES} ${X11_LIBRARIES} ${X11_Xext_LIB})
+  target_compile_options(${PROJECT_NAME}_slip_probe PRIVATE ${${PROJECT_NAME}_WARNINGS})
+  add_dependencies(${PROJECT_NAME}_slip_probe ${catkin_EXPORTED_TARGETS})
 else()
   message(STATUS "${PROJECT_NAME}: X11 with MIT-SHM, XDamage and XFixes not found (apt-get install libx11-dev libxext-dev libxdamage-dev libxfixes-dev): e2e bench probe skipped")
 endif()
