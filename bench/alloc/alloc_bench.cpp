@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -65,11 +66,18 @@ namespace
 thread_local bool t_counting = false;  // initial-exec TLS of the executable: no allocation
 std::atomic<std::uint64_t> g_allocations{0};
 std::atomic<std::uint64_t> g_bytes{0};
+/// RP_ALLOC_TRAP=1: stop (SIGTRAP) at the first counted allocation, to see its caller in gdb.
+const bool g_trap = std::getenv("RP_ALLOC_TRAP") != nullptr;
 
 inline void count(size_t size)
 {
   if (t_counting)
   {
+    if (g_trap)
+    {
+      t_counting = false;
+      std::raise(SIGTRAP);
+    }
     g_allocations.fetch_add(1, std::memory_order_relaxed);
     g_bytes.fetch_add(size, std::memory_order_relaxed);
   }

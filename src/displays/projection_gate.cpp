@@ -78,7 +78,7 @@ bool visitShownForeign(const rviz::Property* entries, const Visit& visit)
         return true;
       }
     }
-    else if (!display->getClassId().startsWith("rviz_projector/") && visit(*display))
+    else if (!display->getClassId().startsWith(QLatin1String("rviz_projector/")) && visit(*display))
     {
       return true;
     }

@@ -186,11 +186,16 @@ void ProjectorMotion::report(const MotionSettings& settings, const std::string& 
   level_shown_ = static_cast<int>(level);
   status_shown_ = status;
 
-  // The text is built only when it may be shown (a few times a second, not every frame).
+  // The text is built only when it may be shown (4 times a second at most) and its figures changed:
+  // a still robot builds no text (and allocates nothing) per frame.
   out.line_changed = false;
-  if (line_time_ < 0.0 || steady_now - line_time_ >= kLineInterval)
+  const std::array<long, 6> key{settings.enabled ? 1L : 0L, static_cast<long>(last_.state),
+                                std::lround(last_.horizon * 1e3), std::lround(last_.speed * 100.0),
+                                std::lround(last_.twist.wz * 573.0), std::lround(last_.age * 1e3)};
+  if (key != line_key_ && (line_time_ < 0.0 || steady_now - line_time_ >= kLineInterval))
   {
     line_time_ = steady_now;
+    line_key_ = key;
     std::string line = settings.enabled ? describePrediction(last_) : std::string("off (Enabled is unticked)");
     if (line != line_shown_)
     {

@@ -59,8 +59,16 @@ void ProjectorView::setPose(const ProjectorPose& pose)
   // Optical frame (z forward, y down) -> OGRE camera (looks down -z, y up): half turn about x.
   const Ogre::Quaternion optical(static_cast<Ogre::Real>(pose.qw), static_cast<Ogre::Real>(pose.qx),
                                  static_cast<Ogre::Real>(pose.qy), static_cast<Ogre::Real>(pose.qz));
-  node_->setPosition(static_cast<Ogre::Real>(p.x), static_cast<Ogre::Real>(p.y), static_cast<Ogre::Real>(p.z));
-  node_->setOrientation(optical * Ogre::Quaternion(Ogre::Degree(180), Ogre::Vector3::UNIT_X));
+  const Ogre::Vector3 position(static_cast<Ogre::Real>(p.x), static_cast<Ogre::Real>(p.y), static_cast<Ogre::Real>(p.z));
+  const Ogre::Quaternion orientation = optical * Ogre::Quaternion(Ogre::Degree(180), Ogre::Vector3::UNIT_X);
+  // The same pose again (a still robot): touching the node would queue a scene update (an
+  // allocation in OGRE) every frame for nothing.
+  if (position == node_->getPosition() && orientation == node_->getOrientation())
+  {
+    return;
+  }
+  node_->setPosition(position);
+  node_->setOrientation(orientation);
 }
 
 std::array<float, 7> ProjectorView::poseKey() const

@@ -7,6 +7,7 @@
 // the Motion compensation status and the read-only Prediction line must say; the display shows it.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include <nav_msgs/Odometry.h>
@@ -99,7 +100,8 @@ private:
   std::string status_shown_;
   int level_shown_ = -1;
   std::string line_shown_;
-  double line_time_ = -1.0;      ///< steady time the line was last changed
+  double line_time_ = -1.0;      ///< steady time the line was last built
+  std::array<long, 6> line_key_{};  ///< the figures (rounded as shown) the line was built from
   double alarm_until_ = -1.0;    ///< a jump/gap/too-fast warning stays up until this steady time
   std::string alarm_;
 };
