@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace slip
 {
@@ -10,10 +12,37 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// S-curve: speed, yaw rate magnitude, time between switches.
+// S-curves: speed, yaw rate magnitude, time between switches (steps) / period (smooth).
 constexpr double kSpeed = 0.7;
 constexpr double kYawRate = 0.6;
 constexpr double kSwitch = 2.0;
+constexpr double kPeriod = 4.0;
+constexpr double kStep = 5e-4;  // s: the smooth S-curve's position is integrated on this grid
+
+/// The smooth S-curve: heading(t) = -A cos(2 pi t / T), A = kYawRate T / (2 pi); its position has
+/// no closed form (Fresnel-like), so it is integrated once with Simpson's rule on a fine grid and
+/// interpolated (the curve bends less than 0.02 mm between grid points).
+double smoothHeading(double t)
+{
+  const double a = kYawRate * kPeriod / (2.0 * kPi);
+  return -a * std::cos(2.0 * kPi * t / kPeriod);
+}
+
+const std::vector<Vec2>& smoothTable()
+{
+  static const std::vector<Vec2> table = [] {
+    std::vector<Vec2> xy(static_cast<std::size_t>(120.0 / kStep) + 2);
+    for (std::size_t i = 1; i < xy.size(); ++i)
+    {
+      const double t0 = (i - 1) * kStep, tm = t0 + kStep / 2.0, t1 = t0 + kStep;
+      const double h0 = smoothHeading(t0), hm = smoothHeading(tm), h1 = smoothHeading(t1);
+      xy[i].x = xy[i - 1].x + kSpeed * kStep / 6.0 * (std::cos(h0) + 4.0 * std::cos(hm) + std::cos(h1));
+      xy[i].y = xy[i - 1].y + kSpeed * kStep / 6.0 * (std::sin(h0) + 4.0 * std::sin(hm) + std::sin(h1));
+    }
+    return xy;
+  }();
+  return table;
+}
 }  // namespace
 
 std::string motionName(Motion m)
@@ -24,13 +53,14 @@ std::string motionName(Motion m)
     case Motion::Turn: return "turn";
     case Motion::Straight: return "straight";
     case Motion::SCurve: return "scurve";
+    case Motion::SCurveSteps: return "scurve-steps";
   }
   return "?";
 }
 
 bool parseMotion(const std::string& name, Motion& m)
 {
-  for (Motion candidate : {Motion::Still, Motion::Turn, Motion::Straight, Motion::SCurve})
+  for (Motion candidate : {Motion::Still, Motion::Turn, Motion::Straight, Motion::SCurve, Motion::SCurveSteps})
   {
     if (motionName(candidate) == name)
     {
@@ -59,6 +89,20 @@ RobotState robotState(Motion m, double t)
       s.vx = 1.0;
       break;
     case Motion::SCurve:
+    {
+      const std::vector<Vec2>& table = smoothTable();
+      const double u = std::min(t / kStep, static_cast<double>(table.size() - 2));
+      const std::size_t i = static_cast<std::size_t>(u);
+      const double f = u - static_cast<double>(i);
+      s.x = table[i].x + f * (table[i + 1].x - table[i].x);
+      s.y = table[i].y + f * (table[i + 1].y - table[i].y);
+      s.yaw = smoothHeading(t);
+      s.vx = kSpeed * std::cos(s.yaw);
+      s.vy = kSpeed * std::sin(s.yaw);
+      s.yaw_rate = kYawRate * std::sin(2.0 * kPi * t / kPeriod);
+      break;
+    }
+    case Motion::SCurveSteps:
     {
       // Arcs of radius v / w: segment k turns left (k even, heading -0.6 -> +0.6) or right (k odd,
       // +0.6 -> -0.6). Each segment ends on y = 0, 2 (v / w) sin(0.6) further along x.
@@ -111,6 +155,7 @@ StripePattern StripePattern::forMotion(Motion m)
       p.y_max_ = 1.6;
       break;
     case Motion::SCurve:
+    case Motion::SCurveSteps:
       p.normal_angle_ = 90.0 * kDeg;
       p.pitch_ = 0.4;
       p.x_min_ = -1.5;

@@ -31,10 +31,13 @@ enum class Motion
   Still,     // standing at (0, 0), yaw 0.05 rad: the geometry's floor (slip ~0)
   Turn,      // turning in place at 0.5 rad/s about (0, 0)
   Straight,  // driving along +x at 1 m/s from (0, 0)
-  SCurve     // 0.7 m/s, yaw rate +0.6 / -0.6 rad/s switching every 2 s (heading -0.6 .. +0.6 rad)
+  SCurve,    // 0.7 m/s, yaw rate 0.6 sin(2 pi t / 4 s) rad/s: a smooth S (heading -0.38 .. +0.38 rad),
+             // at most 0.94 rad/s^2 of angular acceleration, as a robot can follow
+  SCurveSteps  // stress: 0.7 m/s, yaw rate +0.6 / -0.6 rad/s switching instantly every 2 s (heading
+               // -0.6 .. +0.6 rad): infinite angular acceleration, which no constant-twist prediction follows
 };
 
-/// "still", "turn", "straight", "scurve"; parseMotion returns false for anything else.
+/// "still", "turn", "straight", "scurve", "scurve-steps"; parseMotion returns false for anything else.
 std::string motionName(Motion m);
 bool parseMotion(const std::string& name, Motion& m);
 

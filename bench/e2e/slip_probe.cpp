@@ -84,7 +84,7 @@ struct Options
   std::string window = "Projector: Projector";
   std::string setting = "off";
   std::vector<double> truth_lags_ms{0.0};
-  std::vector<Motion> motions{Motion::Still, Motion::Turn, Motion::Straight, Motion::SCurve};
+  std::vector<Motion> motions{Motion::Still, Motion::Turn, Motion::Straight, Motion::SCurve, Motion::SCurveSteps};
   double warmup = 2.0;       // s, per motion
   double trial = 9.0;        // s, per motion
   double still_trial = 3.0;  // s
@@ -119,7 +119,7 @@ Options parseOptions(int argc, char** argv)
       for (const auto& s : split(value(), ','))
       {
         Motion m;
-        if (!slip::parseMotion(s, m)) fail("unknown motion " + s + " (still, turn, straight, scurve)");
+        if (!slip::parseMotion(s, m)) fail("unknown motion " + s + " (still, turn, straight, scurve, scurve-steps)");
         o.motions.push_back(m);
       }
     }

@@ -19,8 +19,10 @@ MOTIONS = [
     ("still", "still robot (geometry check)"),
     ("turn", "turn in place, 0.5 rad/s"),
     ("straight", "straight, 1 m/s"),
-    ("scurve", "S-curve, 0.7 m/s, +-0.6 rad/s"),
+    ("scurve", "S-curve, 0.7 m/s, 0.6 sin rad/s"),
+    ("scurve-steps", "stress: yaw-rate steps +-0.6"),
 ]
+STRESS = {"scurve-steps"}  # reported, not held to the targets: a yaw-rate step cannot be predicted
 TARGETS = [  # (label, figure key, limit): with compensation, continuous
     ("continuous median <= 6 mm", "median", 6.0),
     ("continuous p95 <= 12 mm", "p95", 12.0),
@@ -129,12 +131,14 @@ def main(argv):
             appear = figures(slips[key][1], slips[key][3]) if key in slips else None
             fps = meta.get(key, {}).get("frames_per_s", math.nan)
             check = ""
-            if setting == "on" and motion != "still":
+            if setting == "on" and motion != "still" and motion not in STRESS:
                 failed = [(t, fig_key, limit) for t, fig_key, limit in TARGETS
                           if cont is None or not cont[fig_key] <= limit]
                 check = "PASS" if not failed else "FAIL: " + ", ".join(
                     "%s %s" % (fig_key.replace("abs_mean", "|mean|"), fmt(cont, fig_key)) for _, fig_key, _ in failed)
                 verdicts.append((label, lag, check))
+            elif setting == "on" and motion in STRESS:
+                check = "(stress case, no target)"
             name = "%s, lag %g" % (setting, lag)
             print("%-30s %-11s %6s / %5s / %5s  %6s  %5s    %6s / %5s / %5s  %6s  %5s    %6.1f   %s" % (
                 label, name, fmt(cont, "median"), fmt(cont, "p95"), fmt(cont, "max"), fmt(cont, "mean"),
@@ -162,7 +166,8 @@ def main(argv):
     print("heading, 0.4 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Crossings farther than 0.4 pitch from")
     print("a stripe are left out (ambiguous). Sampled row: image row 100 (~1.6 m ahead of the projector, ~1.5 mm of floor")
     print("per pixel along the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high, beam axis on the floor 1 m ahead.")
-    print("Frames come at the robot's tf rate (50/s): the ProjectorCamera renders only when something shown changed.")
+    print("Frames: without compensation at the robot's tf rate (50/s: the ProjectorCamera renders only when something shown
+changed); with it every frame's prediction differs, so frames come at the 60 Hz limit.")
 
 
 if __name__ == "__main__":
