@@ -166,8 +166,8 @@ def main(argv):
     print("heading, 0.4 m apart (the floor under the row moves sideways, 0.5-1.25 m/s). Crossings farther than 0.4 pitch from")
     print("a stripe are left out (ambiguous). Sampled row: image row 100 (~1.6 m ahead of the projector, ~1.5 mm of floor")
     print("per pixel along the row). Demo projector: 1280x800, fx = fy = 1300, 1.2 m high, beam axis on the floor 1 m ahead.")
-    print("Frames: without compensation at the robot's tf rate (50/s: the ProjectorCamera renders only when something shown
-changed); with it every frame's prediction differs, so frames come at the 60 Hz limit.")
+    print("Frames: without compensation at the robot's tf rate (50/s: the ProjectorCamera renders only when something shown")
+    print("changed); with it every frame's prediction differs, so frames come at the 60 Hz limit.")
 
 
 if __name__ == "__main__":
