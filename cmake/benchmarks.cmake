@@ -40,7 +40,7 @@ add_dependencies(${PROJECT_NAME}_allocbench ${catkin_EXPORTED_TARGETS})
 # X11 (with its XShm, Xdamage, Xfixes parts) is found in CMakeLists.txt.
 if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
   #catkin_lint: ignore uninstalled_target
-  add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp)
+  add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp bench/e2e/x11_windows.cpp)
   set_target_properties(${PROJECT_NAME}_bench_probe PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_bench_probe SYSTEM PRIVATE ${X11_INCLUDE_DIR})
   target_link_libraries(${PROJECT_NAME}_bench_probe ${catkin_LIBRARIES} ${X11_LIBRARIES} ${X11_Xext_LIB}
@@ -49,7 +49,8 @@ if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
   add_dependencies(${PROJECT_NAME}_bench_probe ${catkin_EXPORTED_TARGETS})
   # The motion slip bench (scripts/bench --slip): synthetic robot + one-row probe (issue 14).
   #catkin_lint: ignore uninstalled_target
-  add_executable(${PROJECT_NAME}_slip_probe bench/e2e/slip_geometry.cpp bench/e2e/slip_probe.cpp bench/e2e/slip_x11.cpp)
+  add_executable(${PROJECT_NAME}_slip_probe bench/e2e/slip_geometry.cpp bench/e2e/slip_probe.cpp bench/e2e/slip_x11.cpp
+    bench/e2e/x11_windows.cpp)
   set_target_properties(${PROJECT_NAME}_slip_probe PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_slip_probe SYSTEM PRIVATE ${X11_INCLUDE_DIR})
   target_link_libraries(${PROJECT_NAME}_slip_probe ${catkin_LIBRARIES} ${X11_LIBRARIES} ${X11_Xext_LIB})

@@ -56,6 +56,8 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 
+#include "x11_windows.h"
+
 namespace
 {
 using Clock = std::chrono::steady_clock;
@@ -451,10 +453,7 @@ public:
   /// The largest viewable window whose title contains `title`, or 0.
   Window findWindow(const std::string& title)
   {
-    Window best = 0;
-    long best_area = 0;
-    findIn(root_, title, best, best_area);
-    return best;
+    return bench_x11::findLargestWindow(display_, root_, title);
   }
 
   Rect windowRect(Window window)
@@ -555,34 +554,6 @@ public:
   long draws() const { return draws_; }
 
 private:
-  void findIn(Window window, const std::string& title, Window& best, long& best_area)
-  {
-    char* name = nullptr;
-    if (XFetchName(display_, window, &name) && name)
-    {
-      const bool match = std::string(name).find(title) != std::string::npos;
-      XFree(name);
-      XWindowAttributes a;
-      if (match && XGetWindowAttributes(display_, window, &a) && a.map_state == IsViewable &&
-          static_cast<long>(a.width) * a.height > best_area)
-      {
-        best = window;
-        best_area = static_cast<long>(a.width) * a.height;
-      }
-    }
-    Window root_return, parent;
-    Window* children = nullptr;
-    unsigned count = 0;
-    if (XQueryTree(display_, window, &root_return, &parent, &children, &count))
-    {
-      for (unsigned i = 0; i < count; ++i)
-      {
-        findIn(children[i], title, best, best_area);
-      }
-      if (children) XFree(children);
-    }
-  }
-
   bool waitForDamage(Clock::time_point deadline)
   {
     while (true)

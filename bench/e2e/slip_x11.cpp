@@ -1,5 +1,7 @@
 #include "slip_x11.h"
 
+#include "x11_windows.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -49,46 +51,10 @@ XScreen::~XScreen()
   XCloseDisplay(display_);
 }
 
-namespace
-{
-void findIn(Display* d, Window w, const std::string& title, Window& best, long& best_area)
-{
-  char* name = nullptr;
-  if (XFetchName(d, w, &name) && name)
-  {
-    const bool match = std::string(name).find(title) != std::string::npos;
-    XFree(name);
-    XWindowAttributes a;
-    if (match && XGetWindowAttributes(d, w, &a) && a.map_state == IsViewable &&
-        static_cast<long>(a.width) * a.height > best_area)
-    {
-      best = w;
-      best_area = static_cast<long>(a.width) * a.height;
-    }
-  }
-  Window root, parent;
-  Window* children = nullptr;
-  unsigned count = 0;
-  if (XQueryTree(d, w, &root, &parent, &children, &count))
-  {
-    for (unsigned i = 0; i < count; ++i)
-    {
-      findIn(d, children[i], title, best, best_area);
-    }
-    if (children)
-    {
-      XFree(children);
-    }
-  }
-}
-}  // namespace
 
 Window XScreen::findWindow(const std::string& title)
 {
-  Window best = 0;
-  long area = 0;
-  findIn(display_, DefaultRootWindow(display_), title, best, area);
-  return best;
+  return bench_x11::findLargestWindow(display_, DefaultRootWindow(display_), title);
 }
 
 ScreenRect XScreen::windowRect(Window w)
