@@ -2,16 +2,16 @@
 # CMakeLists.txt, once every target exists; it adds no target and changes no flag of its own.
 #
 # Parsing rviz, OGRE, Qt and ROS headers is most of the cost of each of our translation units.
-# Four precompiled headers, each built once per workspace, are shared by the targets:
-#   ${PROJECT_NAME}                     rviz/OGRE/Qt/ROS: the plugin library and every other
-#                                       target that links it (projector_host, benches, tests)
-#   ${PROJECT_NAME}_rviz_test_support   the same plus gtest: every target linking it (rviz tests)
-#   projector_info_publisher            roscpp and messages: every target that links the ROS
-#                                       conversions but not the plugin (nodes, node tests). Not the
-#                                       library ${PROJECT_NAME}_ros itself: gcc refuses a header
-#                                       precompiled with -fPIC (a library) in -fpie code (our
-#                                       executables that do not link Qt, which forces -fPIC).
-#   test_core                           gtest and the standard library: the core's tests
+# A few precompiled headers, each built once per workspace, are shared by the targets:
+#   projector_host        rviz/OGRE/Qt/ROS: every executable or static library that links the
+#                         plugin library or the rviz test support (projector_host, rviz tests,
+#                         benches). The plugin library ${PROJECT_NAME} precompiles the same
+#                         headers for itself: gcc refuses to share across its -D..._EXPORTS.
+#   projector_info_publisher  roscpp and messages: every executable that links the ROS
+#                         conversions but not the plugin (nodes, node tests).
+#   test_core             gtest and the standard library: the core's tests.
+# An owner is an executable of `all` (or a test for tests): the flags of its users must match
+# (gcc: -fPIC of a library vs -fpie of an executable, macros defined at precompilation).
 # Targets pick theirs by what they link (below), so a new test gets a shared header without a
 # line here. The ROS-free core itself gets none: its sources must keep compiling without ROS.
 #
@@ -42,14 +42,13 @@ set(${PROJECT_NAME}_PCH_RVIZ ${${PROJECT_NAME}_PCH_ROS}
 
 #catkin_lint: ignore_once cmake_old
 target_precompile_headers(${PROJECT_NAME} PRIVATE ${${PROJECT_NAME}_PCH_RVIZ})
+if(TARGET projector_host)
+  #catkin_lint: ignore_once cmake_old
+  target_precompile_headers(projector_host PRIVATE ${${PROJECT_NAME}_PCH_RVIZ})
+endif()
 if(TARGET projector_info_publisher)
   #catkin_lint: ignore_once cmake_old
   target_precompile_headers(projector_info_publisher PRIVATE ${${PROJECT_NAME}_PCH_ROS})
-endif()
-if(TARGET ${PROJECT_NAME}_rviz_test_support)
-  #catkin_lint: ignore_once cmake_old
-  target_precompile_headers(${PROJECT_NAME}_rviz_test_support PRIVATE ${${PROJECT_NAME}_PCH_RVIZ}
-    <gtest/gtest.h>)
 endif()
 if(TARGET test_core)
   #catkin_lint: ignore_once cmake_old
@@ -61,12 +60,13 @@ get_property(${PROJECT_NAME}_pch_targets DIRECTORY PROPERTY BUILDSYSTEM_TARGETS)
 foreach(target ${${PROJECT_NAME}_pch_targets})
   get_target_property(type ${target} TYPE)
   get_target_property(links ${target} LINK_LIBRARIES)
-  if(NOT type MATCHES "^(EXECUTABLE|STATIC_LIBRARY|SHARED_LIBRARY|MODULE_LIBRARY)$" OR NOT links)
+  # Not a shared library: gcc refuses a header precompiled without its -D..._EXPORTS.
+  if(NOT type MATCHES "^(EXECUTABLE|STATIC_LIBRARY)$" OR NOT links)
     continue()
   endif()
   set(from "")
-  foreach(candidate ${PROJECT_NAME}_rviz_test_support:${PROJECT_NAME}_rviz_test_support
-                    ${PROJECT_NAME}:${PROJECT_NAME} ${PROJECT_NAME}_ros:projector_info_publisher)
+  foreach(candidate ${PROJECT_NAME}_rviz_test_support:projector_host ${PROJECT_NAME}:projector_host
+                    ${PROJECT_NAME}_ros:projector_info_publisher)
     string(REPLACE ":" ";" candidate ${candidate})
     list(GET candidate 0 linked)
     list(GET candidate 1 owner)
@@ -76,8 +76,9 @@ foreach(target ${${PROJECT_NAME}_pch_targets})
       break()
     endif()
   endforeach()
-  if(from STREQUAL "" AND TARGET test_core AND NOT target STREQUAL "${PROJECT_NAME}_core")
-    list(FIND links ${PROJECT_NAME}_core found)  # the core's other tests
+  if(from STREQUAL "" AND TARGET test_core AND target MATCHES "^test_")
+    # The core's other tests (never a target of `all`: reusing makes it depend on test_core).
+    list(FIND links ${PROJECT_NAME}_core found)
     if(NOT found EQUAL -1)
       set(from test_core)
     endif()
