@@ -6,6 +6,8 @@
 
 #include <tf2_ros/buffer.h>
 
+#include "rviz_projector/ros/ros_conversions.h"
+
 namespace rviz_projector
 {
 namespace
@@ -103,10 +105,7 @@ bool ProjectorMotion::predictFromOdometry(tf2_ros::Buffer& tf, const std::string
     why = "no tf of the Odometry's child frame [" + base + "]: " + e.what();
     return false;
   }
-  const auto& q = t.transform.rotation;
-  const auto& p = t.transform.translation;
-  const RigidTransform base_pose = RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{p.x, p.y, p.z});
-  out = predictor_.predictWithTwist(ros_now, target, max_horizon, base_pose, twist);
+  out = predictor_.predictWithTwist(ros_now, target, max_horizon, toRigidTransform(t.transform), twist);
   return true;
 }
 

@@ -98,18 +98,11 @@ protected:
   /// from it.
   bool publishBase(double t, const tf2::Transform& base)
   {
-    geometry_msgs::TransformStamped s;
-    s.header.stamp = start_ + ros::Duration(t);
-    s.header.frame_id = "map";
-    s.child_frame_id = "base_link";
-    s.transform.translation.x = base.getOrigin().x();
-    s.transform.translation.y = base.getOrigin().y();
-    s.transform.translation.z = base.getOrigin().z();
+    const tf2::Vector3& o = base.getOrigin();
     const tf2::Quaternion q = base.getRotation();
-    s.transform.rotation.x = q.x();
-    s.transform.rotation.y = q.y();
-    s.transform.rotation.z = q.z();
-    s.transform.rotation.w = q.w();
+    geometry_msgs::TransformStamped s =
+        stampedTransform("map", "base_link", o.x(), o.y(), o.z(), {q.x(), q.y(), q.z(), q.w()});
+    s.header.stamp = start_ + ros::Duration(t);
     rviz_->manager()->getTF2BufferPtr()->setTransform(s, "motion_compensation_test");
     const double stamp = s.header.stamp.toSec();
     return waitFor([&] { return std::abs(projector_->motion().lastPrediction().newest - stamp) < 1e-6; });
