@@ -35,7 +35,11 @@ public:
   const SpacingParameters& parameters() const { return parameters_; }
 
   /// Computes the arrows; the returned reference stays valid until the next call.
-  const SpacedPath& space(const std::vector<Vec2>& path);
+  /// `phase` (Exact mode only; metres, in [0, spacing), see marching.h): every tip lies `phase`
+  /// further from the destination, tip k at  r + gap + phase + k * spacing. 0 (the default) is the
+  /// static layout; values outside [0, spacing) or NaN are wrapped into it (NaN: 0). Paper mode
+  /// ignores it.
+  const SpacedPath& space(const std::vector<Vec2>& path, double phase = 0.0);
 
 private:
   void accumulateFromEnd(const std::vector<Vec2>& points);  // fills from_end_

@@ -13,6 +13,9 @@ struct SpacedPath
 {
   /// Ordered from the destination backwards (arrow 0 is the one nearest the destination).
   std::vector<Arrow> arrows;
+  /// Arc length from the destination to each arrow's tip along the path (same order as `arrows`):
+  /// what the horizon cue judges an arrow by (arc length from the start = path_length - this).
+  std::vector<double> tip_from_end;
   bool has_destination = false;
   Vec2 destination;
   /// Input points dropped because a coordinate was NaN or infinite.
