@@ -81,7 +81,7 @@ void PathSpacer::setParameters(const SpacingParameters& parameters)
   }
 }
 
-const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path)
+const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path, double /*phase*/)
 {
   result_.arrows.clear();
   result_.has_destination = false;

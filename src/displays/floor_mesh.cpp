@@ -89,24 +89,42 @@ void FloorMesh::setMaterial(bool lit, const Ogre::ColourValue& colour)
 
 void FloorMesh::setFlatTriangles(const std::vector<Vec2>& triangles, double z, const Ogre::ColourValue& colour)
 {
+  static const std::vector<float> kOpaque;
+  setFlatTriangles(triangles, kOpaque, z, colour);
+}
+
+void FloorMesh::setFlatTriangles(const std::vector<Vec2>& triangles, const std::vector<float>& alpha, double z,
+                                 const Ogre::ColourValue& colour)
+{
   if (triangles.empty())
   {
     clear();
     return;
   }
-  setMaterial(false, colour);
-  const std::uint32_t packed =
-      Ogre::VertexElement::convertColourValue(colour, Ogre::VertexElement::getBestColourVertexElementType());
+  const float lowest = alpha.empty() ? 1.0f : std::min(1.0f, *std::min_element(alpha.begin(), alpha.end()));
+  Ogre::ColourValue material_colour = colour;
+  material_colour.a = colour.a * std::max(0.0f, lowest);
+  setMaterial(false, material_colour);  // blending on when any vertex is translucent
+  const Ogre::VertexElementType colour_type = Ogre::VertexElement::getBestColourVertexElementType();
+  const std::uint32_t packed = Ogre::VertexElement::convertColourValue(colour, colour_type);
   const float height = static_cast<float>(z);
   Bounds bounds;
   float* out = renderable_->lock(triangles.size(), FloorMeshRenderable::Layout::PositionColour);
-  for (const Vec2& v : triangles)
+  for (std::size_t i = 0; i < triangles.size(); ++i)
   {
+    const Vec2& v = triangles[i];
     const float x = static_cast<float>(v.x), y = static_cast<float>(v.y);
     out[0] = x;
     out[1] = y;
     out[2] = height;
-    std::memcpy(out + 3, &packed, sizeof packed);
+    std::uint32_t vertex_colour = packed;
+    if (i < alpha.size() && alpha[i] < 1.0f)
+    {
+      Ogre::ColourValue faded = colour;
+      faded.a = colour.a * std::max(0.0f, alpha[i]);
+      vertex_colour = Ogre::VertexElement::convertColourValue(faded, colour_type);
+    }
+    std::memcpy(out + 3, &vertex_colour, sizeof vertex_colour);
     out += 4;
     bounds.add(x, y, height);
   }

@@ -11,11 +11,14 @@
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/ros_topic_property.h>
 #include <rviz/properties/status_property.h>
+#include <rviz/properties/tf_frame_property.h>
 
 #include "rviz_projector/core/data_age.h"
+#include "rviz_projector/core/marching.h"
 #include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/path_cue_properties.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
@@ -116,11 +119,16 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
       "message arrived, not from its header stamp. 0: never.",
       this, SLOT(checkPathTimeout()), this);
   path_timeout_property_->setMin(0.0f);
+  cue_properties_ = std::make_unique<PathCueProperties>(this);
+  cue_settings_ = cue_properties_->settings();
+  ProjectionAnimation::add(this);
 }
 
 ProjectedPathDisplay::~ProjectedPathDisplay()
 {
+  ProjectionAnimation::remove(this);
   drain_timer_.stop();
+  cue_source_.unsubscribe();
 }
 
 void ProjectedPathDisplay::onInitialize()
@@ -133,7 +141,10 @@ void ProjectedPathDisplay::onInitialize()
   sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
+  updateStateTopic();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
 }
 
@@ -166,8 +177,12 @@ void ProjectedPathDisplay::reset()
   {
     arrow_mesh_->clear();
     circle_mesh_->clear();
+    glyph_mesh_->clear();
     ProjectionChangeNotifier::notify();
   }
+  cue_source_.clear();
+  robot_status_shown_ = CueStatus();
+  state_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
   // rviz's Reset: subscribe again, so that a latched plan comes back by itself.
   if (isEnabled() && sub_.getSubscriber())
@@ -189,13 +204,19 @@ void ProjectedPathDisplay::load(const rviz::Config& config)
   }
   check.choice(config.mapGetChild(mode_property_->getName()), mode_property_, {"Exact", "Paper"}, "Exact");
   check.choice(config.mapGetChild(style_property_->getName()), style_property_, {"Flat", "3D"}, "Flat");
-  if (check.report().isEmpty())
+  QString report = check.report();
+  const QString cues = cue_properties_->checkLoaded(config);
+  if (!cues.isEmpty())
+  {
+    report += (report.isEmpty() ? "" : "; ") + cues;
+  }
+  if (report.isEmpty())
   {
     deleteStatus("Config");
   }
   else
   {
-    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + check.report());
+    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + report);
   }
 }
 
@@ -290,6 +311,7 @@ void ProjectedPathDisplay::checkPathTimeout()
   spaced_ = &empty_;
   arrow_mesh_->clear();
   circle_mesh_->clear();
+  glyph_mesh_->clear();
   deleteStatus("Style");
   setStatus(rviz::StatusProperty::Warn, "Path",
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
@@ -299,6 +321,10 @@ void ProjectedPathDisplay::checkPathTimeout()
 
 void ProjectedPathDisplay::updateSpacing()
 {
+  if (cue_properties_ && mode_property_->getOptionInt() != static_cast<int>(SpacingMode::Paper))
+  {
+    deleteStatus("Marching");
+  }
   spacer_.setParameters(spacingParameters());
   rebuild();
 }
@@ -338,9 +364,10 @@ void ProjectedPathDisplay::rebuild()
     return;  // no path (in the fixed frame) yet
   }
   spaced_ = &spacer_.space(floor_points_);
+  spaced_phase_ = 0.0;
   redraw();
   // Counted from the triangles: an invalid (degenerate) arrow is not drawn, so not counted.
-  const std::size_t drawn = triangles_.arrowsDrawn();
+  const std::size_t drawn = cuesActive() ? cue_drawn_.arrowsDrawn() : triangles_.arrowsDrawn();
   const std::size_t dropped = dropped_poses_ + spaced_->dropped_points;
   if (!spaced_->has_destination)
   {
@@ -372,6 +399,13 @@ void ProjectedPathDisplay::redraw()
   {
     return;
   }
+  if (cuesActive())
+  {
+    deleteStatus("Style");
+    drawCues(ros::Time::now(), true);
+    return;
+  }
+  glyph_mesh_->clear();
   const double height = height_property_->getFloat();
   const float alpha = alpha_property_->getFloat();
   Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
@@ -404,6 +438,132 @@ void ProjectedPathDisplay::redraw()
   ++mesh_builds_;
   ProjectionChangeNotifier::notify();
   context_->queueRender();
+}
+
+bool ProjectedPathDisplay::cuesActive() const
+{
+  return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_source_.subscribed();
+}
+
+void ProjectedPathDisplay::updateCues()
+{
+  cue_settings_ = cue_properties_->settings();
+  cue_source_.setParameters(cue_properties_->goalParameters());
+  if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
+  {
+    setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
+  }
+  else
+  {
+    deleteStatus("Marching");
+  }
+  if (!cuesActive() && arrow_mesh_)
+  {
+    robot_status_shown_ = CueStatus();
+    deleteStatus("Robot");
+  }
+  rebuild();  // re-spaced (a marching phase) and drawn with the new settings at once
+}
+
+void ProjectedPathDisplay::updateStateTopic()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  cue_source_.subscribe(update_nh_, cue_properties_->state_topic->getStdString());
+  state_status_shown_ = CueStatus();
+  deleteStatus("State");
+  updateCues();
+}
+
+void ProjectedPathDisplay::update(float /*wall_dt*/, float /*ros_dt*/)
+{
+  advance(ros::Time::now());  // the main view animates without a projector too
+}
+
+void ProjectedPathDisplay::advance(const ros::Time& now)
+{
+  if (!arrow_mesh_ || !isEnabled() || !last_msg_ || !cuesActive() || now == last_advance_)
+  {
+    return;  // two projectors tick at the same time: drawn once
+  }
+  drawCues(now, false);
+}
+
+void ProjectedPathDisplay::showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown)
+{
+  if (status.level == shown.level && status.text == shown.text)
+  {
+    return;  // statuses change rarely; this runs at the frame rate
+  }
+  shown = status;
+  if (status.text.empty())
+  {
+    deleteStatus(name);
+    return;
+  }
+  const rviz::StatusProperty::Level level = status.level == CueStatus::Level::Ok     ? rviz::StatusProperty::Ok
+                                            : status.level == CueStatus::Level::Warn ? rviz::StatusProperty::Warn
+                                                                                     : rviz::StatusProperty::Error;
+  setStatus(level, name, QString::fromStdString(status.text));
+}
+
+void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
+{
+  last_advance_ = now;
+  const PathCueInput input = cue_source_.inputAt(now, *context_->getFrameManager(),
+                                                 cue_properties_->robot_frame->getFrameStd(),
+                                                 cue_settings_.needsRobot());
+  showCueStatus("Robot", cue_source_.robotStatus(), robot_status_shown_);
+  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);
+  if (!last_msg_)
+  {
+    return;
+  }
+  const SpacingParameters& parameters = spacer_.parameters();
+  const double phase =
+      cue_settings_.marching ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing) : 0.0;
+  if (phase != spaced_phase_)
+  {
+    spaced_ = &spacer_.space(floor_points_, phase);
+    spaced_phase_ = phase;
+  }
+  cue_next_.build(floor_points_, *spaced_, parameters, cue_settings_, input);
+  const auto same = [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Vec2& p, const Vec2& q) {
+             return p.x == q.x && p.y == q.y;
+           });
+  };
+  if (!force && input.goal.colour == cue_colour_drawn_ && cue_next_.cross() == cue_drawn_.cross() &&
+      cue_next_.destinationAlpha() == cue_drawn_.destinationAlpha() &&
+      cue_next_.arrowAlpha() == cue_drawn_.arrowAlpha() && same(cue_next_.arrows(), cue_drawn_.arrows()) &&
+      same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()))
+  {
+    return;  // the projector already shows exactly this: no upload, no frame
+  }
+  std::swap(cue_next_, cue_drawn_);
+  cue_colour_drawn_ = input.goal.colour;
+  const double height = height_property_->getFloat();
+  const float alpha = alpha_property_->getFloat();
+  Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
+  arrow_colour.a = alpha;
+  Ogre::ColourValue destination_colour =
+      input.goal.colour == GoalCueFrame::Colour::Failed      ? cue_properties_->failed_color->getOgreColor()
+      : input.goal.colour == GoalCueFrame::Colour::Succeeded ? cue_properties_->succeeded_color->getOgreColor()
+                                                              : circle_color_property_->getOgreColor();
+  destination_colour.a = alpha * cue_drawn_.destinationAlpha();
+  arrow_mesh_->setFlatTriangles(cue_drawn_.arrows(), cue_drawn_.arrowAlpha(), height + kArrowLift, arrow_colour);
+  circle_mesh_->setFlatTriangles(cue_drawn_.destination(), height, destination_colour);
+  glyph_mesh_->setFlatTriangles(cue_drawn_.glyph(), height + kArrowLift, arrow_colour);
+  ++mesh_builds_;
+  ProjectionChangeNotifier::notify();
+  context_->queueRender();
+}
+
+std::size_t ProjectedPathDisplay::glyphTriangleCount() const
+{
+  return glyph_mesh_ ? glyph_mesh_->triangleCount() : 0;
 }
 
 std::size_t ProjectedPathDisplay::arrowTriangleCount() const

@@ -23,6 +23,7 @@
 
 #include "rviz_projector/displays/main_view_cost.h"
 #include "rviz_projector/displays/projection_change_counter.h"
+#include "rviz_projector/displays/projection_animation.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/projection_gate.h"
 #include "rviz_projector/displays/projector_crosshairs.h"
@@ -460,6 +461,9 @@ void ProjectorCameraDisplay::onFrameTimer()
   {
     onLensChanged();
   }
+  // Animated drawings (marching arrows, blinking cues) for this frame's time; each bumps the change
+  // counter only when its picture changes.
+  ProjectionAnimation::advanceAll(ros::Time::now());
   renderNow();
   frame_clock_.frameDone(frames_rendered_, isEnabled());
 }

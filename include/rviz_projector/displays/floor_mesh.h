@@ -32,6 +32,10 @@ public:
 
   /// Flat, unlit triangles at height z: drawn in exactly `colour`.
   void setFlatTriangles(const std::vector<Vec2>& triangles, double z, const Ogre::ColourValue& colour);
+  /// The same, each vertex's opacity multiplied by its factor in `alpha` (one per vertex, 0..1;
+  /// missing factors count as 1): the horizon's fading arrows.
+  void setFlatTriangles(const std::vector<Vec2>& triangles, const std::vector<float>& alpha, double z,
+                        const Ogre::ColourValue& colour);
   /// Shaded triangles (lit by the scene's lights), raised by z.
   void setSolidTriangles(const std::vector<MeshVertex>& triangles, double z, const Ogre::ColourValue& colour);
   void clear();

@@ -12,9 +12,12 @@
 #include <ros/callback_queue.h>
 #include <rviz/message_filter_display.h>
 
+#include "rviz_projector/core/cue_drawing.h"
 #include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/vec2.h"
+#include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/projection_animation.h"
 #endif
 
 namespace rviz
@@ -27,6 +30,7 @@ class FloatProperty;
 namespace rviz_projector
 {
 class FloorMesh;
+struct PathCueProperties;
 
 /// Owns the private callback queue of ProjectedPathDisplay. A base class listed before rviz's
 /// MessageFilterDisplay, so the queue outlives the subscriber and tf filter that hold it (the
@@ -41,7 +45,9 @@ class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFi
 {
 };
 
-class ProjectedPathDisplay : public ProjectedPathBase
+/// Cues (issue 15: horizon, marching, robot state, pre-motion warning, turn signal) are computed by
+/// the core's CueDrawing from PathCueSource's inputs at the time of each frame (AnimatedDrawing).
+class ProjectedPathDisplay : public ProjectedPathBase, public AnimatedDrawing
 {
   Q_OBJECT
 public:
@@ -60,8 +66,16 @@ public:
   /// Triangles in the arrow mesh and the circle mesh.
   std::size_t arrowTriangleCount() const;
   std::size_t circleTriangleCount() const;
-  /// How often the meshes were rebuilt: once per new path or property change, never per frame.
+  /// How often the meshes were rebuilt: once per new path or property change, never per frame
+  /// (with an animating cue: once per frame that looks different).
   std::size_t meshBuilds() const { return mesh_builds_; }
+  /// Triangles of the turn-signal glyph drawn now.
+  std::size_t glyphTriangleCount() const;
+
+  /// Brings the cues up to `now` (ROS time); called by every projector at each frame tick and by
+  /// rviz's update. Redraws only when the picture changes. No cue on: nothing.
+  void advance(const ros::Time& now) override;
+  void update(float wall_dt, float ros_dt) override;
 
 protected:
   void onInitialize() override;
@@ -82,6 +96,9 @@ private Q_SLOTS:
   /// Clears the drawing when the path shown arrived longer than Path timeout ago (also called by
   /// the drain timer, which runs whether or not messages arrive).
   void checkPathTimeout();
+  /// A cue property changed: new settings, drawn at once.
+  void updateCues();
+  void updateStateTopic();
 
 private:
   SpacingParameters spacingParameters() const;
@@ -89,6 +106,11 @@ private:
   void rebuild();
   void redraw();
   void checkGeometry(const SpacingParameters& parameters);
+  /// Any cue on (or a State topic set): the drawing comes from CueDrawing, at each frame's time.
+  bool cuesActive() const;
+  /// Draws the cues for `now`; `force`: upload even if the picture looks the same (new colours).
+  void drawCues(const ros::Time& now, bool force);
+  void showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown);
 
   rviz::EnumProperty* mode_property_;
   rviz::FloatProperty* spacing_property_;
@@ -119,5 +141,17 @@ private:
   std::size_t mesh_builds_ = 0;
   std::unique_ptr<FloorMesh> arrow_mesh_;
   std::unique_ptr<FloorMesh> circle_mesh_;
+
+  std::unique_ptr<PathCueProperties> cue_properties_;
+  PathCueSettings cue_settings_;
+  PathCueSource cue_source_;
+  CueDrawing cue_next_;   // built for this frame
+  CueDrawing cue_drawn_;  // on the meshes (swapped with cue_next_: no allocation)
+  GoalCueFrame::Colour cue_colour_drawn_ = GoalCueFrame::Colour::Normal;
+  double spaced_phase_ = 0.0;       // marching phase spaced_ was computed with
+  ros::Time last_advance_;
+  CueStatus robot_status_shown_;
+  CueStatus state_status_shown_;
+  std::unique_ptr<FloorMesh> glyph_mesh_;
 };
 }  // namespace rviz_projector
