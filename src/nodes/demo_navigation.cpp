@@ -14,9 +14,14 @@
 //           /demo/obstacle           visualization_msgs/Marker (latched, 1 Hz)
 //           /demo/robot_footprint    geometry_msgs/PolygonStamped (10 Hz)
 //           /demo/goal               geometry_msgs/PoseStamped (latched, on every new goal)
+//           ~status_topic (/move_base/status) actionlib_msgs/GoalStatusArray (10 Hz): the leg's goal
+//           ACTIVE, then SUCCEEDED at the goal. With ~success_dwell and ~start_delay (s, default 0)
+//           the robot stands still at a reached goal, then after a new goal became active, as a robot
+//           that waits out a start warning would (demo.launch sets them for ProjectedPath's cues).
 // tf:       map -> odom (fixed offset), odom -> base_link (robot pose) at ~tf_rate;
 //           static base_link -> projector_link -> projector_optical_frame.
 
+#include <actionlib_msgs/GoalStatusArray.h>
 #include <geometry_msgs/Point32.h>
 #include <geometry_msgs/PolygonStamped.h>
 #include <geometry_msgs/PoseStamped.h>
@@ -32,6 +37,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -452,6 +458,10 @@ public:
     goal_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("/demo/goal", 1, true);
     obstacle_pub_ = nh_.advertise<visualization_msgs::Marker>("/demo/obstacle", 1, true);
     footprint_pub_ = nh_.advertise<geometry_msgs::PolygonStamped>("/demo/robot_footprint", 1);
+    status_pub_ = nh_.advertise<actionlib_msgs::GoalStatusArray>(
+        pnh_.param<std::string>("status_topic", "/move_base/status"), 1);
+    start_delay_ = std::max(0.0, pnh_.param("start_delay", 0.0));
+    success_dwell_ = std::max(0.0, pnh_.param("success_dwell", 0.0));
 
     if (pnh_.param("publish_projector_tf", true))
     {
@@ -505,18 +515,48 @@ private:
     const ros::SteadyTime steady_now = ros::SteadyTime::now();
     const double dt = std::clamp((steady_now - last_step_).toSec(), 0.0, kMaxStep);
     last_step_ = steady_now;
-    robot_.step(dt);
-
     const ros::Time now = ros::Time::now();
+    if (now >= hold_until_)
+    {
+      robot_.step(dt);  // otherwise: standing still (start delay, or dwelling at a reached goal)
+    }
     broadcastRobotTf(now);
 
+    if (dwelling_)
+    {
+      if (now >= hold_until_)
+      {
+        dwelling_ = false;
+        startLeg((goal_index_ + 1) % goals_.size(), now);
+      }
+      return;
+    }
     const Vec2 goal = goals_[goal_index_];
     if (distance(robot_.pose().position(), goal) < kGoalTolerance)
     {
       ROS_INFO("demo_navigation: reached goal %zu (%.2f, %.2f) after %.1f s", goal_index_, goal.x,
                goal.y, (now - leg_start_).toSec());
+      goal_status_ = actionlib_msgs::GoalStatus::SUCCEEDED;
+      publishStatus(now);
+      if (success_dwell_ > 0.0)
+      {
+        dwelling_ = true;
+        hold_until_ = now + ros::Duration(success_dwell_);
+        return;
+      }
       startLeg((goal_index_ + 1) % goals_.size(), now);
     }
+  }
+
+  void publishStatus(const ros::Time& now)
+  {
+    actionlib_msgs::GoalStatusArray status;
+    status.header.stamp = now;
+    status.status_list.resize(1);
+    status.status_list[0].goal_id.id = "demo_goal_" + std::to_string(goal_count_);
+    status.status_list[0].goal_id.stamp = leg_start_;
+    status.status_list[0].status = goal_status_;
+    status_pub_.publish(status);
   }
 
   void onReplan(const ros::TimerEvent&)
@@ -542,6 +582,7 @@ private:
       footprint.polygon.points.push_back(p);
     }
     footprint_pub_.publish(footprint);
+    publishStatus(footprint.header.stamp);
   }
 
   void onObstacle(const ros::TimerEvent&) { publishObstacle(ros::Time::now()); }
@@ -553,6 +594,10 @@ private:
     const Vec2 from = robot_.pose().position();
     goal_index_ = goal_index;
     leg_start_ = stamp;
+    ++goal_count_;
+    goal_status_ = actionlib_msgs::GoalStatus::ACTIVE;
+    hold_until_ = stamp + ros::Duration(start_delay_);
+    publishStatus(stamp);
     const Vec2 goal = goals_[goal_index_];
     ROS_INFO("demo_navigation: new goal %zu (%.2f, %.2f), %.2f m from the robot at (%.2f, %.2f)",
              goal_index_, goal.x, goal.y, distance(from, goal), from.x, from.y);
@@ -699,6 +744,13 @@ private:
 
   ros::Publisher path_pub_;
   ros::Publisher goal_pub_;
+  ros::Publisher status_pub_;
+  double start_delay_{0.0};
+  double success_dwell_{0.0};
+  ros::Time hold_until_;
+  bool dwelling_{false};
+  unsigned goal_count_{0};
+  std::uint8_t goal_status_{actionlib_msgs::GoalStatus::ACTIVE};
   ros::Publisher obstacle_pub_;
   ros::Publisher footprint_pub_;
   ros::Publisher camera_info_pub_;
