@@ -128,6 +128,13 @@ def groups_of(pipelines):
                     "rviz --disable-anti-aliasing + ProjectorCamera" if reference else "nothing (no ours+noaa run)"),
                 "ours": p, "baseline": reference}
             continue
+        if base.startswith("ours-"):
+            # A variant of ours (e.g. ours-marching: a cue animating) against ours with the same options.
+            reference = "ours" + ("+" + suffix if suffix else "")
+            groups[("variant", p)] = {
+                "title": "%s vs %s (same scene, same options)" % (p, reference if reference in pipelines else "nothing"),
+                "ours": p, "baseline": reference if reference in pipelines else None}
+            continue
         if base in ("ours", "baseline"):
             key = ("pair", suffix)
             title = CONFIGURATIONS.get(suffix, "rviz with +" + suffix)
@@ -207,7 +214,7 @@ def main():
             print("  ".join("{:<{}}".format(c, w) for c, w in zip(row, widths)).rstrip())
         if ours and ours.startswith("host"):
             print_host_targets(get, ours, baseline)
-        elif ours:
+        elif ours and not ours.startswith("ours-"):
             print_targets(get, ours, baseline)
         for metric, what in (("cpu.others", "other processes used"), ("cpu.steal", "the hypervisor stole")):
             values = [get(p, ph, metric) for p in (ours, baseline) for ph in ("drive", "idle", "drive10k")]
