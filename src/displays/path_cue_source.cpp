@@ -30,6 +30,7 @@ const char* phaseName(GoalPhase phase)
 void PathCueSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
 {
   unsubscribe();
+  subscribe_error_.clear();
   topic_ = topic;
   if (topic_.empty())
   {
@@ -42,7 +43,7 @@ void PathCueSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
   catch (const ros::Exception& e)
   {
     topic_.clear();
-    robot_status_ = CueStatus{CueStatus::Level::Error, std::string("State topic: ") + e.what()};
+    subscribe_error_ = std::string("Cannot subscribe to the State topic '") + topic + "': " + e.what();
   }
 }
 
@@ -111,6 +112,10 @@ PathCueInput PathCueSource::inputAt(const ros::Time& now, rviz::FrameManager& fr
 
 CueStatus PathCueSource::stateStatus() const
 {
+  if (!subscribe_error_.empty())
+  {
+    return CueStatus{CueStatus::Level::Error, subscribe_error_};
+  }
   if (topic_.empty())
   {
     return CueStatus();

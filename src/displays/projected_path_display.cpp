@@ -474,6 +474,7 @@ void ProjectedPathDisplay::updateStateTopic()
   cue_source_.subscribe(update_nh_, cue_properties_->state_topic->getStdString());
   state_status_shown_ = CueStatus();
   deleteStatus("State");
+  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);  // e.g. an invalid topic name
   updateCues();
 }
 

@@ -64,6 +64,7 @@ private:
 
   ros::Subscriber subscriber_;
   std::string topic_;
+  std::string subscribe_error_;  // the State topic could not be subscribed (e.g. an invalid name)
   GoalCueTimeline timeline_;
   StillnessDetector stillness_;
   std::vector<GoalStatusEntry> entries_;  // kept between messages (no allocation once big enough)
