@@ -81,9 +81,19 @@ void PathSpacer::setParameters(const SpacingParameters& parameters)
   }
 }
 
-const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path, double /*phase*/)
+const SpacedPath& PathSpacer::space(const std::vector<Vec2>& path, double phase)
 {
+  phase_ = std::isfinite(phase) ? std::fmod(phase, parameters_.spacing) : 0.0;
+  if (phase_ < 0.0)
+  {
+    phase_ += parameters_.spacing;
+  }
+  if (!(phase_ < parameters_.spacing))
+  {
+    phase_ = 0.0;  // fmod rounding up to the spacing itself
+  }
   result_.arrows.clear();
+  result_.tip_from_end.clear();
   result_.has_destination = false;
   result_.destination = Vec2();
   result_.truncated = false;
@@ -145,7 +155,7 @@ void PathSpacer::accumulateFromEnd(const std::vector<Vec2>& points)
 void PathSpacer::placeExact()
 {
   const double radius = 0.5 * parameters_.circle_diameter;
-  const double first_tip = radius + parameters_.destination_gap;
+  const double first_tip = radius + parameters_.destination_gap + phase_;
   const double arrow_length = parameters_.arrow.length();
   const double total = result_.path_length;
   const std::vector<Vec2>& points = *points_in_use_;
@@ -165,6 +175,7 @@ void PathSpacer::placeExact()
     result_.truncated = fitting > static_cast<double>(parameters_.max_arrows);
   }
   result_.arrows.resize(count);
+  result_.tip_from_end.resize(count);
 
   // Tips and tails each have their own walker: both sequences grow, but a tail may lie beyond the
   // next tip (arrow longer than the spacing), so one shared walker could not stay monotonic.
@@ -191,15 +202,18 @@ void PathSpacer::placeExact()
     if (distance(arrow.tip, result_.destination) > clear_of_circle ||
         ArrowOutline(arrow, parameters_.arrow).distanceTo(result_.destination) >= radius)
     {
+      result_.tip_from_end[placed] = tip_s;
       ++placed;
     }
   }
   result_.arrows.resize(placed);
+  result_.tip_from_end.resize(placed);
 }
 
 void PathSpacer::placePaper()
 {
   kept_.clear();
+  kept_from_end_.clear();
   const double d_min = parameters_.spacing;
   const double d_destination = parameters_.spacing + parameters_.circle_diameter;
   const std::vector<Vec2>& points = *points_in_use_;
@@ -209,6 +223,7 @@ void PathSpacer::placePaper()
   {
     const Vec2 p = points[static_cast<std::size_t>(current)];
     kept_.push_back(p);
+    kept_from_end_.push_back(from_end_[static_cast<std::size_t>(current)]);
     const double needed = current == last ? d_destination : d_min;
     std::ptrdiff_t previous = current - 1;
     while (previous >= 0 && distance(p, points[static_cast<std::size_t>(previous)]) < needed)
@@ -222,10 +237,12 @@ void PathSpacer::placePaper()
   const std::size_t count = std::min(pairs, parameters_.max_arrows);
   result_.truncated = pairs > count;
   result_.arrows.resize(count);
+  result_.tip_from_end.resize(count);
   for (std::size_t k = 0; k < count; ++k)
   {
     result_.arrows[k].tip = kept_[2 * k];
     result_.arrows[k].tail = kept_[2 * k + 1];
+    result_.tip_from_end[k] = kept_from_end_[2 * k];
   }
 }
 }  // namespace rviz_projector

@@ -51,6 +51,8 @@ private:
   const std::vector<Vec2>* points_in_use_ = &points_;   // during space(): the input, or points_
   std::vector<double> from_end_;                        // arc length from the destination to each point
   std::vector<Vec2> kept_;    // Paper mode scratch
+  std::vector<double> kept_from_end_;  // arc length from the destination of each kept point
+  double phase_ = 0.0;        // Exact mode: marching phase of this call, in [0, spacing)
   SpacedPath result_;
 };
 }  // namespace rviz_projector
