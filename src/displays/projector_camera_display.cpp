@@ -60,6 +60,7 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
 void ProjectorCameraDisplay::onInitialize()
 {
   view_ = std::make_unique<ProjectorView>(scene_manager_);
+  view_->setMaxLitHeight(props_.max_lit_height->getFloat());
 
   // The gate first: it must hear a display's removal before the Visibility property forgets it.
   gate_ = std::make_unique<ProjectionGate>(context_->getRootDisplayGroup(), this);
@@ -67,7 +68,7 @@ void ProjectorCameraDisplay::onInitialize()
   visibility_property_ = new rviz::DisplayGroupVisibilityProperty(
       vis_bit_, context_->getRootDisplayGroup(), this, "Visibility", true,
       "Displays shown in the projector view. New displays start hidden, except this package's path "
-      "displays.");
+      "displays (ProjectedPath, ProjectionMask).");
   visibility_property_->setIcon(rviz::loadPixmap("package://rviz/icons/visibility.svg", true));
   addChild(visibility_property_, 0);
   // Defaults for the displays that exist now (a loaded config overrides them afterwards) and for
@@ -140,6 +141,8 @@ void ProjectorCameraDisplay::reset()
   // Raise again, at once, every problem that still holds.
   pose_follower_.forget();
   overlay_->invalidate();
+  ceiling_shown_ = -1;
+  showCeiling();
   showVisibilityStatus();
   checkMainViewCost();
   showLensStatuses();
@@ -261,6 +264,43 @@ void ProjectorCameraDisplay::applyProjection()
   context_->queueRender();
 }
 
+void ProjectorCameraDisplay::updateMaxLitHeight()
+{
+  markChanged();
+  if (view_)
+  {
+    view_->setMaxLitHeight(props_.max_lit_height->getFloat());
+    showCeiling();
+  }
+  context_->queueRender();
+}
+
+void ProjectorCameraDisplay::showCeiling()
+{
+  const ProjectorView::Ceiling ceiling = view_->ceiling();
+  if (static_cast<int>(ceiling) == ceiling_shown_)
+  {
+    return;
+  }
+  ceiling_shown_ = static_cast<int>(ceiling);
+  const float height = props_.max_lit_height->getFloat();
+  switch (ceiling)
+  {
+    case ProjectorView::Ceiling::Off:
+    case ProjectorView::Ceiling::NoLens:
+      deleteStatus("Max lit height");
+      break;
+    case ProjectorView::Ceiling::Clipping:
+      setStatus(rviz::StatusProperty::Ok, "Max lit height",
+                QString("Nothing of the scene above %1 m is drawn (only what rviz's scene holds)").arg(height));
+      break;
+    case ProjectorView::Ceiling::ProjectorBelow:
+      setStatus(rviz::StatusProperty::Warn, "Max lit height",
+                QString("The projector is not above %1 m: nothing is clipped").arg(height));
+      break;
+  }
+}
+
 void ProjectorCameraDisplay::updateFrameRate()
 {
   frame_clock_.setRate(props_.frame_rate->getInt(), output_ ? output_->refreshRate() : 0.0);
@@ -376,6 +416,7 @@ bool ProjectorCameraDisplay::updateCameraPose()
     view_->setPose(motion_.follow(tf, fixed_frame_std_, pose_follower_.pose(), settings, now, frame_clock_.now(),
                                   frame_clock_.period(), report));
     showMotion(report);
+    showCeiling();
   }
   return step.ok;
 }

@@ -64,6 +64,14 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
                                                SLOT(applyProjection()), display);
   far_clip->setMin(0.01f);
   far_clip->setMax(10000.0f);
+  max_lit_height = new rviz::FloatProperty(
+      "Max lit height", 0.0f,
+      "Metres above z = 0 of the fixed frame: nothing of rviz's scene above this height is drawn in the projector view "
+      "(a clipping plane; the projector must be mounted above it). It clips only what is in the scene: a person the "
+      "scanner does not see is not protected by it (see the README). 0 = off.",
+      display, SLOT(updateMaxLitHeight()), display);
+  max_lit_height->setMin(0.0f);
+  max_lit_height->setMax(100.0f);
   frame_rate = new rviz::IntProperty(
       "Frame rate limit", 60, "Most frames per second rendered into the output window; paced to the output screen's refresh when "
       "it is lower. Frames are rendered only when something shown changed.",
@@ -195,7 +203,8 @@ QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
   check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_rows->getName()), crosshair_rows);
   check.number(config.mapGetChild(test_pattern->getName()).mapGetChild(crosshair_cols->getName()), crosshair_cols);
   for (rviz::Property* p : {static_cast<rviz::Property*>(tf_timeout), static_cast<rviz::Property*>(near_clip),
-                            static_cast<rviz::Property*>(far_clip), static_cast<rviz::Property*>(frame_rate)})
+                            static_cast<rviz::Property*>(far_clip), static_cast<rviz::Property*>(frame_rate),
+                            static_cast<rviz::Property*>(max_lit_height)})
   {
     check.number(config.mapGetChild(p->getName()), p);
   }

@@ -1,12 +1,15 @@
 #include "rviz_projector/displays/projector_view.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <OgreCamera.h>
+#include <OgreMatrix3.h>
 #include <OgreMatrix4.h>
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
+#include "rviz_projector/core/projection_mask.h"
 #include "rviz_projector/displays/ogre_name.h"
 
 namespace rviz_projector
@@ -37,20 +40,49 @@ std::string ProjectorView::setProjection(const PinholeModel* lens, double near_c
   }
   camera_->setNearClipDistance(static_cast<Ogre::Real>(near_clip));
   camera_->setFarClipDistance(static_cast<Ogre::Real>(far_clip));
+  has_lens_ = lens != nullptr;
   if (lens)
   {
-    const auto m = lens->glProjectionMatrix(near_clip, far_clip);
-    Ogre::Matrix4 projection;
-    for (int r = 0; r < 4; ++r)
-    {
-      for (int c = 0; c < 4; ++c)
-      {
-        projection[r][c] = static_cast<Ogre::Real>(m[4 * r + c]);
-      }
-    }
-    camera_->setCustomProjectionMatrix(true, projection);
+    lens_projection_ = lens->glProjectionMatrix(near_clip, far_clip);
+    applyProjection();
   }
   return warning;
+}
+
+void ProjectorView::setMaxLitHeight(double height)
+{
+  max_lit_height_ = std::isfinite(height) && height > 0.0 ? height : 0.0;
+  applyProjection();
+}
+
+void ProjectorView::applyProjection()
+{
+  if (!has_lens_)
+  {
+    ceiling_ = max_lit_height_ > 0.0 ? Ceiling::NoLens : Ceiling::Off;
+    return;
+  }
+  std::array<double, 16> m = lens_projection_;
+  ceiling_ = Ceiling::Off;
+  if (max_lit_height_ > 0.0)
+  {
+    // The plane z <= h of the fixed frame in camera coordinates: a camera point v is at R v + p, so
+    // h - z = -(row 2 of R) . v + (h - p.z) >= 0.
+    Ogre::Matrix3 r;
+    node_->getOrientation().ToRotationMatrix(r);
+    const Ogre::Vector3& p = node_->getPosition();
+    const std::array<double, 4> plane{-r[2][0], -r[2][1], -r[2][2], max_lit_height_ - p.z};
+    ceiling_ = applyObliqueNearPlane(m, plane) ? Ceiling::Clipping : Ceiling::ProjectorBelow;
+  }
+  Ogre::Matrix4 projection;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      projection[row][c] = static_cast<Ogre::Real>(m[4 * row + c]);
+    }
+  }
+  camera_->setCustomProjectionMatrix(true, projection);
 }
 
 void ProjectorView::setPose(const ProjectorPose& pose)
@@ -69,6 +101,10 @@ void ProjectorView::setPose(const ProjectorPose& pose)
   }
   node_->setPosition(position);
   node_->setOrientation(orientation);
+  if (max_lit_height_ > 0.0)
+  {
+    applyProjection();  // the clipping plane is fixed in the world, not in the camera
+  }
 }
 
 std::array<float, 7> ProjectorView::poseKey() const

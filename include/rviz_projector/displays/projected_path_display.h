@@ -17,6 +17,7 @@
 #include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/vec2.h"
 #include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/private_callback_queue.h"
 #include "rviz_projector/displays/projection_animation.h"
 #endif
 
@@ -31,14 +32,6 @@ namespace rviz_projector
 {
 class FloorMesh;
 struct PathCueProperties;
-
-/// Owns the private callback queue of ProjectedPathDisplay. A base class listed before rviz's
-/// MessageFilterDisplay, so the queue outlives the subscriber and tf filter that hold it (the
-/// filter's destructor still removes its callbacks from the queue).
-struct PrivateCallbackQueue
-{
-  ros::CallbackQueue path_queue_;
-};
 
 /// The base of ProjectedPathDisplay: rviz's MessageFilterDisplay, destroyed before the queue.
 class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFilterDisplay<nav_msgs::Path>

@@ -118,6 +118,8 @@ private Q_SLOTS:
   /// Shows the output window as the properties ask (when enabled): "Output" status.
   void updateOutput();
   void applyProjection();
+  /// Max lit height changed: the projector view's clipping plane.
+  void updateMaxLitHeight();
   void updateFrameRate();
   void onFootprintPropertyChanged();
   void updateTestPattern();
@@ -150,6 +152,8 @@ private:
   void updateFootprintVisible();
   /// Something this display itself draws or how it draws changed: render again.
   void markChanged() { ++own_changes_; }
+  /// The Max lit height status, when the view's ceiling state changed (cheap: called every frame).
+  void showCeiling();
   /// The Frame property, or the CameraInfo's frame_id when it is empty.
   const std::string& projectorFrame() const { return projector_frame_; }
   /// A Warn status `name` with this text; deleted when the text is empty.
@@ -185,6 +189,7 @@ private:
   std::uint64_t frames_rendered_ = 0;
   std::uint64_t frames_skipped_ = 0;
   std::uint64_t own_changes_ = 0;
+  int ceiling_shown_ = -1;  // ProjectorView::Ceiling of the Max lit height status shown (-1: none yet)
   StatusCache statuses_;
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
   std::unique_ptr<ProjectorCrosshairs> crosshairs_;

@@ -70,6 +70,7 @@ struct ProjectorCameraProperties
   rviz::ColorProperty* background;
   rviz::FloatProperty* near_clip;
   rviz::FloatProperty* far_clip;
+  rviz::FloatProperty* max_lit_height;  ///< metres, 0 = off
   rviz::IntProperty* frame_rate;
   rviz::BoolProperty* anti_aliasing;
   rviz::BoolProperty* footprint;

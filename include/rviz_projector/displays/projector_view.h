@@ -33,11 +33,30 @@ public:
   std::string setProjection(const PinholeModel* lens, double near_clip, double far_clip);
   /// Puts the camera at the projector's optical frame (pose.state must be Ok).
   void setPose(const ProjectorPose& pose);
+
+  /// Max lit height: nothing of the scene above z = `height` of the fixed frame is drawn (the plane
+  /// becomes the projection's near plane, applyObliqueNearPlane). NaN or <= 0: off.
+  void setMaxLitHeight(double height);
+  enum class Ceiling
+  {
+    Off,             ///< no Max lit height
+    Clipping,        ///< the projector is above the height: everything above it is clipped
+    ProjectorBelow,  ///< the projector is not above the height: nothing is clipped (see README)
+    NoLens,          ///< no lens yet
+  };
+  Ceiling ceiling() const { return ceiling_; }
   /// Position and orientation (w, x, y, z) of the camera, as rendered.
   std::array<float, 7> poseKey() const;
 
 private:
+  /// The lens's projection, with the Max lit height plane for the current pose when it is on.
+  void applyProjection();
+
   Ogre::SceneManager* scene_manager_;
+  bool has_lens_ = false;
+  std::array<double, 16> lens_projection_{};
+  double max_lit_height_ = 0.0;  // <= 0: off
+  Ceiling ceiling_ = Ceiling::Off;
   Ogre::Camera* camera_;
   Ogre::SceneNode* node_;
 };

@@ -1,0 +1,103 @@
+// rviz display "rviz_projector/ProjectionMask" (issue 15): black occluders over everything a laser
+// scanner (and optionally a point cloud) sees above the floor, drawn only in projector views, so no
+// light falls on people, legs or bags and arrows behind them are cut where they block the beam.
+// An orchestrator: the core's scanToFloorPoints / OccluderMesh make the geometry, FloorMesh draws it,
+// MainViewExclusion keeps it out of rviz's main view.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <memory>
+#include <vector>
+
+#include <OgreRenderTargetListener.h>
+#include <QTimer>
+#include <ros/subscriber.h>
+#include <rviz/message_filter_display.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include "rviz_projector/core/projection_mask.h"
+#include "rviz_projector/core/vec2.h"
+#include "rviz_projector/displays/private_callback_queue.h"
+#endif
+
+namespace Ogre
+{
+class RenderWindow;
+class SceneNode;
+}  // namespace Ogre
+
+namespace rviz
+{
+class BoolProperty;
+class FloatProperty;
+class RosTopicProperty;
+}  // namespace rviz
+
+namespace rviz_projector
+{
+class FloorMesh;
+
+class ProjectionMaskBase : protected PrivateCallbackQueue, public rviz::MessageFilterDisplay<sensor_msgs::LaserScan>
+{
+};
+
+class ProjectionMaskDisplay : public ProjectionMaskBase, public Ogre::RenderTargetListener
+{
+  Q_OBJECT
+public:
+  ProjectionMaskDisplay();
+  ~ProjectionMaskDisplay() override;
+
+  void reset() override;
+  void load(const rviz::Config& config) override;
+
+  /// Occluder columns drawn now (one per used return or cloud point).
+  std::size_t columns() const { return occluders_.columns(); }
+
+  // The main view's render window: the occluders are hidden while it renders, the outline shown.
+  void preViewportUpdate(const Ogre::RenderTargetViewportEvent& event) override;
+  void postViewportUpdate(const Ogre::RenderTargetViewportEvent& event) override;
+
+protected:
+  void onInitialize() override;
+  void onEnable() override;
+  void onDisable() override;
+  void processMessage(const sensor_msgs::LaserScan::ConstPtr& msg) override;
+
+private Q_SLOTS:
+  void drainQueue();
+  void updateShape();
+  void updateCloudTopic();
+
+private:
+  void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  /// Too old by Max scan age (ROS time): true, with a status, when the message must be dropped.
+  bool tooOld(const ros::Time& stamp, const char* status, const char* what);
+  /// Drops scan and cloud once older than Max scan age (a stale mask is worse than none).
+  void releaseStale();
+  void rebuild();
+  void clearMask();
+
+  rviz::FloatProperty* height_property_;
+  rviz::FloatProperty* margin_property_;
+  rviz::FloatProperty* max_age_property_;
+  rviz::BoolProperty* main_view_property_;
+  rviz::RosTopicProperty* cloud_topic_property_;
+
+  QTimer drain_timer_;
+  ros::Subscriber cloud_sub_;
+  std::vector<Vec2> scan_points_;
+  std::vector<Vec2> cloud_points_;
+  std::vector<Vec2> all_points_;
+  std::vector<Vec3> cloud_scratch_;
+  ros::Time scan_stamp_;   // zero: no scan in the mask
+  ros::Time cloud_stamp_;  // zero: no cloud in the mask
+  OccluderMesh occluders_;
+  Ogre::SceneNode* occluder_node_ = nullptr;
+  Ogre::SceneNode* outline_node_ = nullptr;
+  std::unique_ptr<FloorMesh> occluder_mesh_;
+  std::unique_ptr<FloorMesh> outline_mesh_;
+  Ogre::RenderWindow* main_window_ = nullptr;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,362 @@
+#include "rviz_projector/displays/projection_mask_display.h"
+
+#include <cmath>
+
+#include <OgreRenderSystem.h>
+#include <OgreRenderWindow.h>
+#include <OgreRoot.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <OgreViewport.h>
+#include <rviz/config.h>
+#include <rviz/display_context.h>
+#include <rviz/frame_manager.h>
+#include <rviz/properties/bool_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/ros_topic_property.h>
+#include <rviz/properties/status_property.h>
+#include <rviz/render_panel.h>
+#include <rviz/view_manager.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include "rviz_projector/displays/config_check.h"
+#include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/projection_change_notifier.h"
+#include "rviz_projector/ros/ros_conversions.h"
+
+namespace rviz_projector
+{
+namespace
+{
+constexpr int kDrainIntervalMs = 5;
+/// Cloud points this close to z = 0 are the floor itself, not something standing on it.
+constexpr double kFloorClearance = 0.03;
+
+RigidTransform fromOgre(const Ogre::Vector3& p, const Ogre::Quaternion& q)
+{
+  return RigidTransform::fromQuaternion(q.x, q.y, q.z, q.w, Vec3{p.x, p.y, p.z});
+}
+}  // namespace
+
+ProjectionMaskDisplay::ProjectionMaskDisplay()
+{
+  height_property_ = new rviz::FloatProperty(
+      "Height", 2.0f,
+      "Metres: each return becomes a black column from the floor up to this height in the projector's view.", this,
+      SLOT(updateShape()), this);
+  height_property_->setMin(0.0f);
+  height_property_->setMax(100.0f);
+  margin_property_ = new rviz::FloatProperty(
+      "Margin", 0.1f,
+      "Metres: half-width of each column around its return (widens the mask beyond what the scanner saw).", this,
+      SLOT(updateShape()), this);
+  margin_property_->setMin(0.0f);
+  margin_property_->setMax(10.0f);
+  max_age_property_ = new rviz::FloatProperty(
+      "Max scan age", 0.5f,
+      "Seconds (ROS time, from the message stamp): older scans are dropped, and the mask is released when no fresh "
+      "one arrives for this long. A stale mask would shade where a person was, not where they are.",
+      this);
+  max_age_property_->setMin(0.0f);
+  main_view_property_ = new rviz::BoolProperty(
+      "Show in main view", false,
+      "Draw the columns translucent in rviz's main view, for setting up. The projector views always get them "
+      "black and opaque; without this the main view shows nothing of the mask.",
+      this);
+  cloud_topic_property_ = new rviz::RosTopicProperty(
+      "Point cloud topic", "", QString::fromStdString(ros::message_traits::datatype<sensor_msgs::PointCloud2>()),
+      "Optional sensor_msgs/PointCloud2 (e.g. a depth camera): its points between the floor and Height mask too. "
+      "Empty: none.",
+      this, SLOT(updateCloudTopic()), this);
+}
+
+ProjectionMaskDisplay::~ProjectionMaskDisplay()
+{
+  drain_timer_.stop();
+  cloud_sub_.shutdown();
+  if (main_window_)
+  {
+    // The main view's window may be gone already (rviz closing): only a window OGRE still has.
+    Ogre::RenderSystem* system = Ogre::Root::getSingletonPtr() ? Ogre::Root::getSingleton().getRenderSystem() : nullptr;
+    if (system && system->getRenderTarget(main_window_->getName()) == main_window_)
+    {
+      main_window_->removeListener(this);
+    }
+  }
+  occluder_mesh_.reset();
+  outline_mesh_.reset();
+}
+
+void ProjectionMaskDisplay::onInitialize()
+{
+  update_nh_.setCallbackQueue(&path_queue_);
+  MFDClass::onInitialize();
+  occluder_node_ = scene_node_->createChildSceneNode();
+  outline_node_ = scene_node_->createChildSceneNode();
+  occluder_mesh_ = std::make_unique<FloorMesh>(scene_manager_, occluder_node_);
+  outline_mesh_ = std::make_unique<FloorMesh>(scene_manager_, outline_node_);
+  outline_node_->setVisible(false);
+  rviz::ViewManager* views = context_->getViewManager();
+  rviz::RenderPanel* panel = views ? views->getRenderPanel() : nullptr;
+  main_window_ = panel ? panel->getRenderWindow() : nullptr;
+  if (main_window_)
+  {
+    main_window_->addListener(this);
+  }
+  connect(&drain_timer_, &QTimer::timeout, this, &ProjectionMaskDisplay::drainQueue);
+  drain_timer_.start(kDrainIntervalMs);
+  setStatus(rviz::StatusProperty::Warn, "Scan", "No scan received yet: nothing is masked");
+}
+
+void ProjectionMaskDisplay::onEnable()
+{
+  MFDClass::onEnable();
+  scene_node_->setVisible(true);
+  outline_node_->setVisible(false);  // shown only while the main view renders
+  updateCloudTopic();
+  ProjectionChangeNotifier::notify();
+}
+
+void ProjectionMaskDisplay::onDisable()
+{
+  MFDClass::onDisable();
+  cloud_sub_.shutdown();
+  scene_node_->setVisible(false);
+  clearMask();
+  ProjectionChangeNotifier::notify();
+}
+
+void ProjectionMaskDisplay::reset()
+{
+  MFDClass::reset();
+  clearMask();
+  setStatus(rviz::StatusProperty::Warn, "Scan", "No scan received yet: nothing is masked");
+}
+
+void ProjectionMaskDisplay::load(const rviz::Config& config)
+{
+  MFDClass::load(config);
+  ConfigCheck check;
+  for (rviz::FloatProperty* p : {height_property_, margin_property_, max_age_property_})
+  {
+    check.number(config.mapGetChild(p->getName()), p);
+  }
+  if (check.report().isEmpty())
+  {
+    deleteStatus("Config");
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + check.report());
+  }
+}
+
+void ProjectionMaskDisplay::preViewportUpdate(const Ogre::RenderTargetViewportEvent& /*event*/)
+{
+  if (!occluder_node_)
+  {
+    return;
+  }
+  occluder_node_->setVisible(false);
+  outline_node_->setVisible(isEnabled() && main_view_property_->getBool());
+}
+
+void ProjectionMaskDisplay::postViewportUpdate(const Ogre::RenderTargetViewportEvent& /*event*/)
+{
+  if (!occluder_node_)
+  {
+    return;
+  }
+  occluder_node_->setVisible(isEnabled());
+  outline_node_->setVisible(false);
+}
+
+bool ProjectionMaskDisplay::tooOld(const ros::Time& stamp, const char* status, const char* what)
+{
+  const double max_age = max_age_property_->getFloat();
+  const double age = (ros::Time::now() - stamp).toSec();
+  if (max_age > 0.0 && age > max_age)
+  {
+    setStatus(rviz::StatusProperty::Warn, status,
+              QString("%1 %2 s old (Max scan age %3 s): dropped; is the sensor's clock in step with this one?")
+                  .arg(what)
+                  .arg(age, 0, 'f', 2)
+                  .arg(max_age));
+    return true;
+  }
+  return false;
+}
+
+void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPtr& msg)
+{
+  if (tooOld(msg->header.stamp, "Scan", "Scan"))
+  {
+    return;
+  }
+  Ogre::Vector3 position;
+  Ogre::Quaternion orientation;
+  if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
+  {
+    setStatus(rviz::StatusProperty::Error, "Transform",
+              QString("No transform from '%1' at the scan's stamp").arg(QString::fromStdString(msg->header.frame_id)));
+    return;
+  }
+  setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");
+  ScanView scan;
+  scan.angle_min = msg->angle_min;
+  scan.angle_increment = msg->angle_increment;
+  scan.range_min = msg->range_min;
+  scan.range_max = msg->range_max;
+  scan.ranges = msg->ranges.data();
+  scan.count = msg->ranges.size();
+  const MaskInputCount count = scanToFloorPoints(scan, fromOgre(position, orientation), scan_points_);
+  scan_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  if (count.ignored > 0)
+  {
+    setStatus(rviz::StatusProperty::Ok, "Scan",
+              QString("%1 returns masked; %2 ignored (NaN/Inf, out of range or no return)").arg(count.used).arg(count.ignored));
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Ok, "Scan", QString("%1 returns masked").arg(count.used));
+  }
+  rebuild();
+}
+
+void ProjectionMaskDisplay::onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg)
+{
+  if (tooOld(msg->header.stamp, "Point cloud", "Point cloud"))
+  {
+    return;
+  }
+  Ogre::Vector3 position;
+  Ogre::Quaternion orientation;
+  if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
+  {
+    setStatus(rviz::StatusProperty::Error, "Point cloud",
+              QString("No transform from '%1' at the cloud's stamp: dropped")
+                  .arg(QString::fromStdString(msg->header.frame_id)));
+    return;
+  }
+  const RigidTransform to_fixed = fromOgre(position, orientation);
+  cloud_scratch_.clear();
+  try
+  {
+    const std::size_t n = static_cast<std::size_t>(msg->width) * msg->height;
+    if (msg->data.size() < n * msg->point_step)
+    {
+      throw std::runtime_error("data shorter than width x height x point_step");
+    }
+    sensor_msgs::PointCloud2ConstIterator<float> x(*msg, "x"), y(*msg, "y"), z(*msg, "z");
+    for (std::size_t i = 0; i < n; ++i, ++x, ++y, ++z)
+    {
+      cloud_scratch_.push_back(to_fixed.apply(Vec3{*x, *y, *z}));
+    }
+  }
+  catch (const std::exception& e)
+  {
+    setStatus(rviz::StatusProperty::Error, "Point cloud", QString("Unusable cloud (%1): dropped").arg(e.what()));
+    return;
+  }
+  cloud_points_.clear();
+  const MaskInputCount count =
+      cloudToFloorPoints(cloud_scratch_, kFloorClearance, height_property_->getFloat(), cloud_points_);
+  cloud_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  setStatus(rviz::StatusProperty::Ok, "Point cloud",
+            QString("%1 points masked; %2 on the floor, above Height or NaN").arg(count.used).arg(count.ignored));
+  rebuild();
+}
+
+void ProjectionMaskDisplay::drainQueue()
+{
+  path_queue_.callAvailable();
+  releaseStale();
+}
+
+void ProjectionMaskDisplay::releaseStale()
+{
+  const double max_age = max_age_property_->getFloat();
+  if (!(max_age > 0.0))
+  {
+    return;
+  }
+  const ros::Time now = ros::Time::now();
+  bool changed = false;
+  if (!scan_stamp_.isZero() && (now - scan_stamp_).toSec() > max_age)
+  {
+    scan_stamp_ = ros::Time();
+    scan_points_.clear();
+    setStatus(rviz::StatusProperty::Warn, "Scan",
+              QString("No scan newer than Max scan age (%1 s): mask released, nothing is masked").arg(max_age));
+    changed = true;
+  }
+  if (!cloud_stamp_.isZero() && (now - cloud_stamp_).toSec() > max_age)
+  {
+    cloud_stamp_ = ros::Time();
+    cloud_points_.clear();
+    setStatus(rviz::StatusProperty::Warn, "Point cloud",
+              QString("No cloud newer than Max scan age (%1 s): its part of the mask released").arg(max_age));
+    changed = true;
+  }
+  if (changed)
+  {
+    rebuild();
+  }
+}
+
+void ProjectionMaskDisplay::updateShape()
+{
+  rebuild();
+}
+
+void ProjectionMaskDisplay::updateCloudTopic()
+{
+  cloud_sub_.shutdown();
+  cloud_points_.clear();
+  cloud_stamp_ = ros::Time();
+  deleteStatus("Point cloud");
+  const std::string topic = cloud_topic_property_->getStdString();
+  if (!initialized() || !isEnabled() || topic.empty())
+  {
+    rebuild();
+    return;
+  }
+  try
+  {
+    cloud_sub_ = update_nh_.subscribe(topic, 2, &ProjectionMaskDisplay::onCloud, this);
+    setStatus(rviz::StatusProperty::Warn, "Point cloud", "No cloud received yet");
+  }
+  catch (const ros::Exception& e)
+  {
+    setStatus(rviz::StatusProperty::Error, "Point cloud", QString("Cannot subscribe: %1").arg(e.what()));
+  }
+  rebuild();
+}
+
+void ProjectionMaskDisplay::clearMask()
+{
+  scan_points_.clear();
+  cloud_points_.clear();
+  scan_stamp_ = ros::Time();
+  cloud_stamp_ = ros::Time();
+  rebuild();
+}
+
+void ProjectionMaskDisplay::rebuild()
+{
+  if (!occluder_mesh_)
+  {
+    return;
+  }
+  all_points_.assign(scan_points_.begin(), scan_points_.end());
+  all_points_.insert(all_points_.end(), cloud_points_.begin(), cloud_points_.end());
+  occluders_.build(all_points_, height_property_->getFloat(), margin_property_->getFloat());
+  occluder_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue::Black);
+  outline_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue(1.0f, 0.6f, 0.0f, 0.35f));
+  ProjectionChangeNotifier::notify();
+  context_->queueRender();
+}
+}  // namespace rviz_projector
+
+#include <pluginlib/class_list_macros.hpp>
+PLUGINLIB_EXPORT_CLASS(rviz_projector::ProjectionMaskDisplay, rviz::Display)
