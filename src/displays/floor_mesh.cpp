@@ -160,6 +160,11 @@ void FloorMesh::setSolidTriangles(const std::vector<MeshVertex>& triangles, doub
   triangle_count_ = triangles.size() / 3;
 }
 
+void FloorMesh::setVisibilityFlags(std::uint32_t flags)
+{
+  renderable_->setVisibilityFlags(flags);
+}
+
 void FloorMesh::clear()
 {
   renderable_->clear();

@@ -62,7 +62,7 @@ ProjectionMaskDisplay::ProjectionMaskDisplay()
       "Show in main view", false,
       "Draw the columns translucent in rviz's main view, for setting up. The projector views always get them "
       "black and opaque; without this the main view shows nothing of the mask.",
-      this);
+      this, SLOT(updateOutline()), this);
   cloud_topic_property_ = new rviz::RosTopicProperty(
       "Point cloud topic", "", QString::fromStdString(ros::message_traits::datatype<sensor_msgs::PointCloud2>()),
       "Optional sensor_msgs/PointCloud2 (e.g. a depth camera): its points between the floor and Height mask too. "
@@ -85,6 +85,10 @@ ProjectionMaskDisplay::~ProjectionMaskDisplay()
   }
   occluder_mesh_.reset();
   outline_mesh_.reset();
+  if (outline_node_)
+  {
+    scene_manager_->destroySceneNode(outline_node_);  // not under the display's node: ours to destroy
+  }
 }
 
 void ProjectionMaskDisplay::onInitialize()
@@ -92,10 +96,14 @@ void ProjectionMaskDisplay::onInitialize()
   update_nh_.setCallbackQueue(&path_queue_);
   MFDClass::onInitialize();
   occluder_node_ = scene_node_->createChildSceneNode();
-  outline_node_ = scene_node_->createChildSceneNode();
   occluder_mesh_ = std::make_unique<FloorMesh>(scene_manager_, occluder_node_);
+  // The outline is not under the display's node: rviz sets the visibility flags of everything there
+  // (the Visibility ticks of each projector). Its own flag, the main view's bit only, keeps it out of
+  // every projector view (their viewports show only their own bit).
+  outline_node_ = scene_manager_->getRootSceneNode()->createChildSceneNode();
   outline_mesh_ = std::make_unique<FloorMesh>(scene_manager_, outline_node_);
-  outline_node_->setVisible(false);
+  outline_mesh_->setVisibilityFlags(context_->getDefaultVisibilityBit());
+  updateOutline();
   rviz::ViewManager* views = context_->getViewManager();
   rviz::RenderPanel* panel = views ? views->getRenderPanel() : nullptr;
   main_window_ = panel ? panel->getRenderWindow() : nullptr;
@@ -112,7 +120,7 @@ void ProjectionMaskDisplay::onEnable()
 {
   MFDClass::onEnable();
   scene_node_->setVisible(true);
-  outline_node_->setVisible(false);  // shown only while the main view renders
+  updateOutline();
   updateCloudTopic();
   ProjectionChangeNotifier::notify();
 }
@@ -122,6 +130,7 @@ void ProjectionMaskDisplay::onDisable()
   MFDClass::onDisable();
   cloud_sub_.shutdown();
   scene_node_->setVisible(false);
+  updateOutline();
   clearMask();
   ProjectionChangeNotifier::notify();
 }
@@ -158,7 +167,6 @@ void ProjectionMaskDisplay::preViewportUpdate(const Ogre::RenderTargetViewportEv
     return;
   }
   occluder_node_->setVisible(false);
-  outline_node_->setVisible(isEnabled() && main_view_property_->getBool());
 }
 
 void ProjectionMaskDisplay::postViewportUpdate(const Ogre::RenderTargetViewportEvent& /*event*/)
@@ -168,7 +176,15 @@ void ProjectionMaskDisplay::postViewportUpdate(const Ogre::RenderTargetViewportE
     return;
   }
   occluder_node_->setVisible(isEnabled());
-  outline_node_->setVisible(false);
+}
+
+void ProjectionMaskDisplay::updateOutline()
+{
+  if (outline_node_)
+  {
+    outline_node_->setVisible(isEnabled() && main_view_property_->getBool());
+    context_->queueRender();
+  }
 }
 
 bool ProjectionMaskDisplay::tooOld(const ros::Time& stamp, const char* status, const char* what)

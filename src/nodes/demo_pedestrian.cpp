@@ -42,10 +42,10 @@ class DemoPedestrian
 public:
   DemoPedestrian() : pnh_("~"), listener_(buffer_)
   {
-    pnh_.param("ahead", ahead_, 1.6);
-    pnh_.param("half_width", half_width_, 1.2);
-    pnh_.param("speed", speed_, 1.0);
-    pnh_.param("pause", pause_, 3.0);
+    pnh_.param("ahead", ahead_, 2.2);
+    pnh_.param("half_width", half_width_, 1.0);
+    pnh_.param("speed", speed_, 0.5);
+    pnh_.param("pause", pause_, 1.5);
     pnh_.param("radius", radius_, 0.22);
     pnh_.param("laser_x", laser_x_, 0.2);
     pnh_.param("laser_z", laser_z_, 0.3);
@@ -158,7 +158,7 @@ private:
   ros::Timer timer_;
   ScanGeometry geometry_;
   std::vector<float> ranges_;
-  double ahead_ = 1.6, half_width_ = 1.2, speed_ = 1.0, pause_ = 3.0, radius_ = 0.22, laser_x_ = 0.2, laser_z_ = 0.3;
+  double ahead_ = 2.2, half_width_ = 1.0, speed_ = 0.5, pause_ = 1.5, radius_ = 0.22, laser_x_ = 0.2, laser_z_ = 0.3;
   bool started_ = false;
   double start_ = 0.0;
   double side_ = 1.0;

@@ -3,6 +3,7 @@
 // written straight into the reused hardware buffer (FloorMeshRenderable).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -39,6 +40,8 @@ public:
   /// Shaded triangles (lit by the scene's lights), raised by z.
   void setSolidTriangles(const std::vector<MeshVertex>& triangles, double z, const Ogre::ColourValue& colour);
   void clear();
+  /// OGRE visibility flags of the mesh (which viewports show it); rviz sets them for displays' nodes.
+  void setVisibilityFlags(std::uint32_t flags);
 
   /// Number of triangles currently drawn.
   std::size_t triangleCount() const { return triangle_count_; }

@@ -69,6 +69,7 @@ private Q_SLOTS:
   void drainQueue();
   void updateShape();
   void updateCloudTopic();
+  void updateOutline();
 
 private:
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
