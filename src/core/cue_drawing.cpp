@@ -92,7 +92,8 @@ void CueDrawing::build(const std::vector<Vec2>& path, const SpacedPath& spaced, 
       animating_ = true;
       if (blinkOn(input.time, settings.turn_hz))
       {
-        appendTurnGlyph(input.robot, turn_.heading, turn_.side, settings.glyph_offset, settings.glyph_size, glyph_);
+        appendTurnGlyph(input.robot, turn_.heading, turn_.side, settings.glyph_ahead, settings.glyph_aside,
+                        settings.glyph_size, glyph_);
       }
     }
   }

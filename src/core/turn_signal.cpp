@@ -84,17 +84,18 @@ TurnDetection detectTurn(const std::vector<Vec2>& points, const std::vector<doub
   return result;
 }
 
-void appendTurnGlyph(const Vec2& robot, double heading, TurnSide side, double offset, double size,
+void appendTurnGlyph(const Vec2& robot, double heading, TurnSide side, double ahead, double aside, double size,
                      std::vector<Vec2>& triangles)
 {
-  if (side == TurnSide::None || !isFinite(robot) || !std::isfinite(heading) || !std::isfinite(offset) ||
+  if (side == TurnSide::None || !isFinite(robot) || !std::isfinite(heading) || !std::isfinite(ahead) ||
+      !std::isfinite(aside) ||
       !std::isfinite(size) || !(size > 0.0))
   {
     return;
   }
   const Vec2 forward{std::cos(heading), std::sin(heading)};
   const Vec2 toward = side == TurnSide::Left ? perpendicular(forward) : perpendicular(forward) * -1.0;
-  const Vec2 centre = robot + toward * offset;
+  const Vec2 centre = robot + forward * ahead + toward * aside;
   // Local coordinates: u along `forward`, v towards the turn. The band is a quarter circle of
   // radius R about (0, R): it starts at (0, 0) heading +u and ends at (R, R) heading +v, where the
   // head (width 2.2 w, length 0.45 size) points on along +v. The shape's box is centred on `centre`.

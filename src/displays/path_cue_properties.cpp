@@ -101,6 +101,10 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
                                "Metres of path ahead of the robot in which a turn is signalled.", turn_signal, display);
   glyph_size = boundedFloat("Glyph size", static_cast<float>(defaults.glyph_size), 0.01f, 10.0f,
                             "Metres across the turn-signal glyph.", turn_signal, display);
+  glyph_ahead = boundedFloat("Glyph ahead", static_cast<float>(defaults.glyph_ahead), -10.0f, 10.0f,
+                             "Metres in front of the robot's centre where the glyph is drawn (beside the robot, "
+                             "where the projector's light falls).",
+                             turn_signal, display);
 }
 
 QString PathCueProperties::checkLoaded(const rviz::Config& config) const
@@ -111,7 +115,7 @@ QString PathCueProperties::checkLoaded(const rviz::Config& config) const
     check.number(childConfig(config, horizon, p), p);
   }
   check.number(childConfig(config, marching, marching_speed), marching_speed);
-  for (rviz::FloatProperty* p : {turn_angle, turn_distance, glyph_size})
+  for (rviz::FloatProperty* p : {turn_angle, turn_distance, glyph_size, glyph_ahead})
   {
     check.number(childConfig(config, turn_signal, p), p);
   }
@@ -135,7 +139,8 @@ PathCueSettings PathCueProperties::settings() const
   s.turn.angle = turn_angle->getFloat() * kPi / 180.0;
   s.turn.distance = turn_distance->getFloat();
   s.glyph_size = glyph_size->getFloat();
-  s.glyph_offset = 0.45 + 0.5 * s.glyph_size;  // beside the robot's footprint, not under it
+  s.glyph_ahead = glyph_ahead->getFloat();
+  s.glyph_aside = 0.3 + 0.5 * s.glyph_size;  // beside the path's arrows, not on them
   return s;
 }
 

@@ -137,11 +137,12 @@ TEST(TurnGlyph, OnTheInsideOfTheTurnWithinItsSizeCounterClockwise)
     {
       std::vector<Vec2> triangles;
       const Vec2 robot{1.0, 2.0};
-      appendTurnGlyph(robot, heading, side, 0.6, 0.3, triangles);
+      appendTurnGlyph(robot, heading, side, 0.8, 0.6, 0.3, triangles);
       ASSERT_FALSE(triangles.empty());
       ASSERT_EQ(triangles.size() % 3, 0u);
       const Vec2 left{-std::sin(heading), std::cos(heading)};
-      const Vec2 centre = robot + left * (side == TurnSide::Left ? 0.6 : -0.6);
+      const Vec2 forward{std::cos(heading), std::sin(heading)};
+      const Vec2 centre = robot + forward * 0.8 + left * (side == TurnSide::Left ? 0.6 : -0.6);
       for (std::size_t i = 0; i < triangles.size(); i += 3)
       {
         EXPECT_GT(signedArea(triangles[i], triangles[i + 1], triangles[i + 2]), 0.0);
@@ -155,9 +156,9 @@ TEST(TurnGlyph, OnTheInsideOfTheTurnWithinItsSizeCounterClockwise)
     }
   }
   std::vector<Vec2> none;
-  appendTurnGlyph(Vec2{0, 0}, 0.0, TurnSide::None, 0.6, 0.3, none);
-  appendTurnGlyph(Vec2{0, 0}, kNaN, TurnSide::Left, 0.6, 0.3, none);
-  appendTurnGlyph(Vec2{0, 0}, 0.0, TurnSide::Left, 0.6, -1.0, none);
+  appendTurnGlyph(Vec2{0, 0}, 0.0, TurnSide::None, 0.8, 0.6, 0.3, none);
+  appendTurnGlyph(Vec2{0, 0}, kNaN, TurnSide::Left, 0.8, 0.6, 0.3, none);
+  appendTurnGlyph(Vec2{0, 0}, 0.0, TurnSide::Left, 0.8, 0.6, -1.0, none);
   EXPECT_TRUE(none.empty());
 }
 

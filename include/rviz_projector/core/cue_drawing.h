@@ -26,7 +26,8 @@ struct PathCueSettings
   TurnSignalParameters turn;
   double turn_hz = 1.5;         ///< blink frequency of the glyph
   double glyph_size = 0.3;      ///< metres across
-  double glyph_offset = 0.45;   ///< from the robot's centre to the glyph's centre, sideways, metres
+  double glyph_ahead = 0.8;     ///< from the robot's centre to the glyph's centre, forwards, metres
+  double glyph_aside = 0.45;    ///< ... and sideways (towards the inside of the turn), metres
 
   /// Whether any cue needs the robot's position (horizon, turn signal).
   bool needsRobot() const { return horizon || turn_signal; }

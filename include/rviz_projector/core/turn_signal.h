@@ -52,12 +52,14 @@ TurnDetection detectTurn(const std::vector<Vec2>& points, const std::vector<doub
  * to `triangles`: a curved arrow (a quarter-circle band ending in an arrow head) that bends to
  * `side`, drawn beside the robot on the inside of the turn.
  *
- * Placement: centred at robot + offset * left-normal(heading) for Left (the right normal for Right),
- * `size` metres across, the band `size / 5` wide; the band starts pointing along `heading` and turns
- * by 90 degrees to `side`, the head at its end pointing along the turned direction. Nothing is
- * appended for TurnSide::None, size <= 0 or non-finite inputs.
+ * Placement: centred at robot + ahead * forward(heading) + aside * left-normal(heading) for Left (the
+ * right normal for Right): beside the robot and `ahead` metres in front of it, where a projector
+ * that lights the floor in front of the robot can show it. `size` metres across (its box), the band
+ * `size / 5` wide; the band starts pointing along `heading` and turns by 90 degrees to `side`, the
+ * head at its end pointing along the turned direction. Nothing is appended for TurnSide::None,
+ * size <= 0 or non-finite inputs.
  */
-void appendTurnGlyph(const Vec2& robot, double heading, TurnSide side, double offset, double size,
+void appendTurnGlyph(const Vec2& robot, double heading, TurnSide side, double ahead, double aside, double size,
                      std::vector<Vec2>& triangles);
 
 /// A cross (an X of two bars, `width` wide, `size` metres from corner to corner along each bar)

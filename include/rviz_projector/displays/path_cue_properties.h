@@ -48,5 +48,6 @@ struct PathCueProperties
   rviz::FloatProperty* turn_angle;       ///< child of turn_signal, degrees
   rviz::FloatProperty* turn_distance;    ///< child of turn_signal
   rviz::FloatProperty* glyph_size;       ///< child of turn_signal
+  rviz::FloatProperty* glyph_ahead;      ///< child of turn_signal
 };
 }  // namespace rviz_projector
