@@ -130,6 +130,10 @@ void FloorMesh::setFlatTriangles(const std::vector<Vec2>& triangles, const std::
   }
   renderable_->unlock(triangles.size(), bounds.box());
   triangle_count_ = triangles.size() / 3;
+  if (!shown_)
+  {
+    renderable_->setVisible(false);
+  }
 }
 
 void FloorMesh::setSolidTriangles(const std::vector<MeshVertex>& triangles, double z,
@@ -158,11 +162,21 @@ void FloorMesh::setSolidTriangles(const std::vector<MeshVertex>& triangles, doub
   }
   renderable_->unlock(triangles.size(), bounds.box());
   triangle_count_ = triangles.size() / 3;
+  if (!shown_)
+  {
+    renderable_->setVisible(false);
+  }
 }
 
 void FloorMesh::setVisibilityFlags(std::uint32_t flags)
 {
   renderable_->setVisibilityFlags(flags);
+}
+
+void FloorMesh::setShown(bool shown)
+{
+  shown_ = shown;
+  renderable_->setVisible(shown_ && triangle_count_ > 0);
 }
 
 void FloorMesh::clear()

@@ -127,19 +127,28 @@ QString PathCueProperties::checkLoaded(const rviz::Config& config) const
   return check.report();
 }
 
+namespace
+{
+/// A float property's value rounded to 6 decimals, as a double.
+double decimal(const rviz::FloatProperty* p)
+{
+  return std::round(static_cast<double>(p->getFloat()) * 1e6) / 1e6;
+}
+}  // namespace
+
 PathCueSettings PathCueProperties::settings() const
 {
   PathCueSettings s;
   s.horizon = horizon->getBool();
-  s.horizon_length = horizon_length->getFloat();
-  s.fade_length = fade_length->getFloat();
+  s.horizon_length = decimal(horizon_length);
+  s.fade_length = decimal(fade_length);
   s.marching = marching->getBool();
-  s.marching_speed = marching_speed->getFloat();
+  s.marching_speed = decimal(marching_speed);
   s.turn_signal = turn_signal->getBool();
-  s.turn.angle = turn_angle->getFloat() * kPi / 180.0;
-  s.turn.distance = turn_distance->getFloat();
-  s.glyph_size = glyph_size->getFloat();
-  s.glyph_ahead = glyph_ahead->getFloat();
+  s.turn.angle = decimal(turn_angle) * kPi / 180.0;
+  s.turn.distance = decimal(turn_distance);
+  s.glyph_size = decimal(glyph_size);
+  s.glyph_ahead = decimal(glyph_ahead);
   s.glyph_aside = 0.3 + 0.5 * s.glyph_size;  // beside the path's arrows, not on them
   return s;
 }
@@ -148,8 +157,8 @@ GoalCueParameters PathCueProperties::goalParameters() const
 {
   GoalCueParameters p;
   p.warning_enabled = warning->getBool();
-  p.warning_time = warning_time->getFloat();
-  p.warning_hz = warning_hz->getFloat();
+  p.warning_time = decimal(warning_time);
+  p.warning_hz = decimal(warning_hz);
   return p;
 }
 }  // namespace rviz_projector

@@ -76,6 +76,7 @@ void PathCueSource::onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& ms
   }
   summary_ = summarizeGoals(entries_);
   received_ = true;
+  news_ = true;
   const double now = ros::Time::now().toSec();
   timeline_.update(summary_, now, stillness_.still(now));
 }

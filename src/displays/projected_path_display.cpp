@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projected_path_display.h"
 
+#include <cmath>
+
 #include <OgreSceneManager.h>
 #include <OgreSceneNode.h>
 
@@ -152,6 +154,13 @@ void ProjectedPathDisplay::onEnable()
 {
   MFDClass::onEnable();
   scene_node_->setVisible(true);
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
+  {
+    if (mesh)
+    {
+      mesh->setShown(true);
+    }
+  }
   ProjectionChangeNotifier::notify();
 }
 
@@ -159,6 +168,13 @@ void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
   scene_node_->setVisible(false);
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
+  {
+    if (mesh)
+    {
+      mesh->setShown(false);  // a property changed while disabled must not show a new upload
+    }
+  }
   ProjectionChangeNotifier::notify();
 }
 
@@ -225,7 +241,9 @@ SpacingParameters ProjectedPathDisplay::spacingParameters() const
   SpacingParameters p;
   p.mode = mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper) ? SpacingMode::Paper
                                                                                   : SpacingMode::Exact;
-  p.spacing = spacing_property_->getFloat();
+  // As typed (0.3, not the float 0.300000012): marching takes the phase modulo the spacing of a
+  // distance of ~1e8 m (speed x epoch time), where that float error would be metres.
+  p.spacing = std::round(static_cast<double>(spacing_property_->getFloat()) * 1e6) / 1e6;
   p.arrow.shaft_length = shaft_length_property_->getFloat();
   p.arrow.shaft_diameter = shaft_diameter_property_->getFloat();
   p.arrow.head_length = head_length_property_->getFloat();
@@ -288,6 +306,10 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
 void ProjectedPathDisplay::drainQueue()
 {
   path_queue_.callAvailable();
+  if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
+  {
+    drawCues(ros::Time::now(), false);  // a new goal state shows at once, whatever the clock does
+  }
   checkPathTimeout();
 }
 
@@ -319,12 +341,21 @@ void ProjectedPathDisplay::checkPathTimeout()
   context_->queueRender();
 }
 
-void ProjectedPathDisplay::updateSpacing()
+void ProjectedPathDisplay::checkMarchingMode()
 {
-  if (cue_properties_ && mode_property_->getOptionInt() != static_cast<int>(SpacingMode::Paper))
+  if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
+  {
+    setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
+  }
+  else
   {
     deleteStatus("Marching");
   }
+}
+
+void ProjectedPathDisplay::updateSpacing()
+{
+  checkMarchingMode();
   spacer_.setParameters(spacingParameters());
   rebuild();
 }
@@ -449,14 +480,7 @@ void ProjectedPathDisplay::updateCues()
 {
   cue_settings_ = cue_properties_->settings();
   cue_source_.setParameters(cue_properties_->goalParameters());
-  if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
-  {
-    setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
-  }
-  else
-  {
-    deleteStatus("Marching");
-  }
+  checkMarchingMode();
   if (!cuesActive() && arrow_mesh_)
   {
     robot_status_shown_ = CueStatus();

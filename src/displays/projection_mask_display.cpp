@@ -120,6 +120,7 @@ void ProjectionMaskDisplay::onEnable()
 {
   MFDClass::onEnable();
   scene_node_->setVisible(true);
+  occluder_mesh_->setShown(true);
   updateOutline();
   updateCloudTopic();
   ProjectionChangeNotifier::notify();
@@ -130,6 +131,7 @@ void ProjectionMaskDisplay::onDisable()
   MFDClass::onDisable();
   cloud_sub_.shutdown();
   scene_node_->setVisible(false);
+  occluder_mesh_->setShown(false);
   updateOutline();
   clearMask();
   ProjectionChangeNotifier::notify();
@@ -166,7 +168,7 @@ void ProjectionMaskDisplay::preViewportUpdate(const Ogre::RenderTargetViewportEv
   {
     return;
   }
-  occluder_node_->setVisible(false);
+  occluder_mesh_->setShown(false);
 }
 
 void ProjectionMaskDisplay::postViewportUpdate(const Ogre::RenderTargetViewportEvent& /*event*/)
@@ -175,14 +177,14 @@ void ProjectionMaskDisplay::postViewportUpdate(const Ogre::RenderTargetViewportE
   {
     return;
   }
-  occluder_node_->setVisible(isEnabled());
+  occluder_mesh_->setShown(isEnabled());
 }
 
 void ProjectionMaskDisplay::updateOutline()
 {
-  if (outline_node_)
+  if (outline_mesh_)
   {
-    outline_node_->setVisible(isEnabled() && main_view_property_->getBool());
+    outline_mesh_->setShown(isEnabled() && main_view_property_->getBool());
     context_->queueRender();
   }
 }

@@ -40,6 +40,9 @@ public:
   /// Shaded triangles (lit by the scene's lights), raised by z.
   void setSolidTriangles(const std::vector<MeshVertex>& triangles, double z, const Ogre::ColourValue& colour);
   void clear();
+  /// Shown or hidden whatever its content (a display's own switch; a new upload keeps it). A
+  /// scene node's setVisible() is not enough: each upload makes a non-empty mesh visible again.
+  void setShown(bool shown);
   /// OGRE visibility flags of the mesh (which viewports show it); rviz sets them for displays' nodes.
   void setVisibilityFlags(std::uint32_t flags);
 
@@ -56,5 +59,6 @@ private:
   std::unique_ptr<FloorMeshRenderable> renderable_;
   Ogre::MaterialPtr material_;
   std::size_t triangle_count_ = 0;
+  bool shown_ = true;
 };
 }  // namespace rviz_projector

@@ -29,6 +29,8 @@ struct PathCueProperties
   /// After loading `config`: the values that were unusable and replaced (empty when none).
   QString checkLoaded(const rviz::Config& config) const;
   /// The cue settings the properties hold (angles in radians).
+  /// Float properties' values as the decimals the user typed (speed 0.1 is 0.1, not 0.100000001:
+  /// multiplied by an epoch time of 1.7e9 s that difference would move marching arrows by metres).
   PathCueSettings settings() const;
   GoalCueParameters goalParameters() const;
 

@@ -58,6 +58,13 @@ public:
   /// What the "Robot" status says (after inputAt; robot not needed: empty text).
   const CueStatus& robotStatus() const { return robot_status_; }
   GoalPhase phase() const { return timeline_.phase(); }
+  /// Whether a status message arrived since the last call (the picture may change at once).
+  bool takeNews()
+  {
+    const bool news = news_;
+    news_ = false;
+    return news;
+  }
 
 private:
   void onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& msg);
@@ -70,6 +77,7 @@ private:
   std::vector<GoalStatusEntry> entries_;  // kept between messages (no allocation once big enough)
   GoalSummary summary_;
   bool received_ = false;
+  bool news_ = false;
   bool robot_known_ = false;
   CueStatus robot_status_;
 };

@@ -101,6 +101,8 @@ private:
   void checkGeometry(const SpacingParameters& parameters);
   /// Any cue on (or a State topic set): the drawing comes from CueDrawing, at each frame's time.
   bool cuesActive() const;
+  /// The Marching warning when Marching is on in Paper mode.
+  void checkMarchingMode();
   /// Draws the cues for `now`; `force`: upload even if the picture looks the same (new colours).
   void drawCues(const ros::Time& now, bool force);
   void showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown);
