@@ -15,6 +15,7 @@ if(benchmark_FOUND)
   add_executable(${PROJECT_NAME}_microbench
     bench/micro/bench_paths.cpp
     bench/micro/calibration_benchmarks.cpp
+    bench/micro/mask_benchmarks.cpp
     bench/micro/mesh_benchmarks.cpp
     bench/micro/micro_benchmarks.cpp
     bench/micro/reference_baseline.cpp

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include <actionlib_msgs/GoalStatusArray.h>
@@ -22,6 +23,16 @@ using namespace rviz_projector_test;
 
 namespace
 {
+/// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png: the README's pictures of the
+/// cues come from these scenes.
+void saveShot(const QImage& image, const char* name)
+{
+  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
+  {
+    image.save(QString("%1/%2.png").arg(folder, name));
+  }
+}
+
 constexpr double kStart = 0.3, kEnd = 2.5;  // the test path: straight along +x at y = 0
 constexpr double kFirstTip = 0.15;           // circle radius 0.1 + gap 0.05
 constexpr double kSpacing = 0.25, kArrow = 0.18;
@@ -129,6 +140,7 @@ TEST_F(PathCuesTest, HorizonCutsAndFadesByTheTipsArcLength)
     double tip;
     double alpha;
   } expected[] = {{0.85, 0.0}, {1.10, 1.0}, {1.35, 1.0}, {1.60, 0.6}, {1.85, 0.1}, {2.10, 0.0}, {2.35, 0.0}};
+  saveShot(frame, "cues-horizon");
   int checked = 0;
   for (const auto& e : expected)
   {
@@ -256,6 +268,7 @@ TEST_F(PathCuesTest, GoalStatesColourTheCues)
 
   publishStatus("g1", actionlib_msgs::GoalStatus::ABORTED);
   const QImage failed = grabUntil([&](const QImage& image) { return countColour(image, kArrowMagenta) == 0; });
+  saveShot(failed, "cues-failed");
   EXPECT_EQ(countColour(failed, kArrowMagenta), 0) << "a failed goal hides the arrows";
   EXPECT_EQ(countColour(failed, kGreen, 40), 0) << "no circle";
   EXPECT_TRUE(sameColour(colourAt(failed, {1.5, 0.0}), kRed, 30)) << "cross centre in Failed color";
@@ -336,6 +349,7 @@ TEST_F(PathCuesTest, TurnSignalOnTheInsideBeforeASharpTurnOnly)
   ASSERT_LT(std::fmod(now * 1.5, 1.0), 0.5) << "the test time must fall in a lit half";
   const QImage frame = grabUntil([&](const QImage&) { return path_->glyphTriangleCount() > 0; });
   EXPECT_GT(path_->glyphTriangleCount(), 0u);
+  saveShot(frame, "cues-turn");
   int inside = 0, outside = 0;
   for (double dx = -0.15; dx <= 0.15; dx += 0.01)
   {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
@@ -23,6 +24,16 @@ using namespace rviz_projector_test;
 
 namespace
 {
+/// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png: the README's pictures of the
+/// cues come from these scenes.
+void saveShot(const QImage& image, const char* name)
+{
+  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
+  {
+    image.save(QString("%1/%2.png").arg(folder, name));
+  }
+}
+
 constexpr double kTip0 = 2.35, kSpacing = 0.25;  // tips of the arrows of the path 0.3 -> 2.5 (no phase)
 
 /// Does the segment from `a` to `b` pass through the box [lo, hi]? (slab test)
@@ -137,6 +148,7 @@ TEST_F(ProjectionMaskTest, ArrowsAreCutExactlyWhereTheColumnBlocksTheBeam)
     return !sameColour(colourAt(image, {1.2, 0.0}), kArrowMagenta, 30) &&
            sameColour(colourAt(image, {0.6 - 0.13, 0.0}), kArrowMagenta, 30);
   }));
+  saveShot(frame, "mask-gap");
   int dark = 0, lit = 0;
   for (const Vec2& p : shaftPoints())
   {
