@@ -264,6 +264,17 @@ TEST(GoalCues, WarningBlinksForItsTimeThenSteady)
   EXPECT_TRUE(t.frameAt(103.3).arrows);
 }
 
+TEST(GoalCues, AStartedWarningRunsItsFullTimeWhenTheRobotStartsMoving)
+{
+  GoalCueTimeline t = timeline(true);
+  t.update(GoalSummary{GoalPhase::Active, "g1"}, 100.0, true);
+  t.update(GoalSummary{GoalPhase::Active, "g1"}, 100.5, false);  // the robot moves 0.5 s in
+  EXPECT_FALSE(t.frameAt(100.85).arrows) << "still blinking (dark half)";
+  EXPECT_TRUE(t.frameAt(100.85).warning);
+  EXPECT_TRUE(t.frameAt(101.6).arrows);
+  EXPECT_TRUE(t.frameAt(101.6).warning);
+}
+
 TEST(GoalCues, NoWarningWhenMovingOrDisabledAndANewGoalWarnsAgain)
 {
   GoalCueTimeline t = timeline(true);
