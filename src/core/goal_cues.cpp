@@ -73,11 +73,13 @@ GoalSummary summarizeGoals(const std::vector<GoalStatusEntry>& entries)
   {
     summary.phase = GoalPhase::Active;
     summary.id = newest_in_progress->id;
+    summary.stamp = newest_in_progress->stamp;
   }
   else if (newest)
   {
     summary.phase = kindOf(newest->status) == Kind::Succeeded ? GoalPhase::Succeeded : GoalPhase::Failed;
     summary.id = newest->id;
+    summary.stamp = newest->stamp;
   }
   return summary;
 }
@@ -98,7 +100,12 @@ void GoalCueTimeline::update(const GoalSummary& summary, double time, bool robot
     phase_ = summary.phase;
     id_ = summary.id;
     since_ = time;
-    warning_ = phase_ == GoalPhase::Active && parameters_.warning_enabled && robot_still;
+    // A goal issued longer than the warning time ago (rviz started, or the State topic set, while the
+    // robot is on its way) is not new to the people around: no warning. Stamp 0 or in the future
+    // (another clock): judged new.
+    const bool issued_long_ago =
+        std::isfinite(summary.stamp) && summary.stamp > 0.0 && time - summary.stamp >= parameters_.warning_time;
+    warning_ = phase_ == GoalPhase::Active && parameters_.warning_enabled && robot_still && !issued_long_ago;
     return;
   }
   if (time < since_)

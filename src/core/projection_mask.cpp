@@ -1,6 +1,9 @@
 #include "rviz_projector/core/projection_mask.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 #include <opencv2/core.hpp>
 
@@ -54,14 +57,79 @@ MaskInputCount cloudToFloorPoints(const std::vector<Vec3>& cloud, double floor_c
   return count;
 }
 
+bool snapToCells(std::vector<Vec2>& points, double cell, std::size_t max_cells)
+{
+  if (!(std::isfinite(cell) && cell > 0.0))
+  {
+    return true;
+  }
+  // Cell indices as integers (exact comparisons); points too far out for an int64 index are dropped.
+  constexpr double kIndexLimit = 9.0e15;
+  std::vector<std::pair<std::int64_t, std::int64_t>> cells;
+  cells.reserve(std::min(points.size(), max_cells));
+  bool complete = true;
+  for (const Vec2& p : points)
+  {
+    const double kx = std::floor(p.x / cell), ky = std::floor(p.y / cell);
+    if (!(std::isfinite(kx) && std::isfinite(ky) && std::abs(kx) < kIndexLimit && std::abs(ky) < kIndexLimit))
+    {
+      continue;
+    }
+    cells.emplace_back(static_cast<std::int64_t>(kx), static_cast<std::int64_t>(ky));
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  if (cells.size() > max_cells)
+  {
+    // Keep the cells of the first points in input order (a scanner's order: deterministic).
+    std::vector<std::pair<std::int64_t, std::int64_t>> kept;
+    kept.reserve(max_cells);
+    std::vector<char> taken(cells.size(), 0);
+    for (const Vec2& p : points)
+    {
+      const double kx = std::floor(p.x / cell), ky = std::floor(p.y / cell);
+      if (!(std::isfinite(kx) && std::isfinite(ky) && std::abs(kx) < kIndexLimit && std::abs(ky) < kIndexLimit))
+      {
+        continue;
+      }
+      const std::pair<std::int64_t, std::int64_t> key(static_cast<std::int64_t>(kx), static_cast<std::int64_t>(ky));
+      const auto at = std::lower_bound(cells.begin(), cells.end(), key);
+      const auto index = static_cast<std::size_t>(at - cells.begin());
+      if (!taken[index])  // every key is in `cells`: it was built from the same points
+      {
+        taken[index] = 1;
+        kept.push_back(key);
+        if (kept.size() == max_cells)
+        {
+          break;
+        }
+      }
+    }
+    std::sort(kept.begin(), kept.end());
+    cells.swap(kept);
+    complete = false;
+  }
+  points.clear();
+  for (const auto& c : cells)
+  {
+    points.push_back(Vec2{(static_cast<double>(c.first) + 0.5) * cell, (static_cast<double>(c.second) + 0.5) * cell});
+  }
+  return complete;
+}
+
 void OccluderMesh::build(const std::vector<Vec2>& points, double height, double margin)
 {
   triangles_.clear();
+  append(points, height, margin);
+}
+
+void OccluderMesh::append(const std::vector<Vec2>& points, double height, double margin)
+{
   if (!(std::isfinite(height) && height > 0.0 && std::isfinite(margin) && margin > 0.0))
   {
     return;
   }
-  triangles_.reserve(points.size() * kVerticesPerColumn);
+  triangles_.reserve(triangles_.size() + points.size() * kVerticesPerColumn);
   const auto quad = [this](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& normal) {
     // a b c d counter-clockwise seen from outside (along -normal).
     triangles_.insert(triangles_.end(), {MeshVertex{a, normal}, MeshVertex{b, normal}, MeshVertex{c, normal},

@@ -54,8 +54,8 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
   horizon_length = boundedFloat("Length", static_cast<float>(defaults.horizon_length), 0.0f, 1000.0f,
                                 "Metres of path ahead of the robot that are drawn.", horizon, display);
   fade_length = boundedFloat("Fade", static_cast<float>(defaults.fade_length), 0.0f, 1000.0f,
-                             "The last metres of the horizon fade out (opacity falls linearly to 0). Flat style "
-                             "only: 3D arrows are cut at the horizon without fading.",
+                             "The last metres of the horizon fade out (opacity falls linearly to 0). With a cue "
+                             "on, arrows are drawn Flat (Style 3D is not used).",
                              horizon, display);
 
   marching = new rviz::BoolProperty(

@@ -432,7 +432,14 @@ void ProjectedPathDisplay::redraw()
   }
   if (cuesActive())
   {
-    deleteStatus("Style");
+    if (style_property_->getOptionInt() == kSolid)
+    {
+      setStatus(rviz::StatusProperty::Warn, "Style", "A cue is on: arrows are drawn Flat (3D is not used with cues)");
+    }
+    else
+    {
+      deleteStatus("Style");
+    }
     drawCues(ros::Time::now(), true);
     return;
   }
@@ -547,8 +554,10 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
     return;
   }
   const SpacingParameters& parameters = spacer_.parameters();
-  const double phase =
-      cue_settings_.marching ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing) : 0.0;
+  // Marching needs Exact spacing (a Marching warning says so otherwise): no re-spacing per frame then.
+  const double phase = cue_settings_.marching && parameters.mode == SpacingMode::Exact
+                           ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing)
+                           : 0.0;
   if (phase != spaced_phase_)
   {
     spaced_ = &spacer_.space(floor_points_, phase);

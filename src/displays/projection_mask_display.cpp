@@ -1,5 +1,6 @@
 #include "rviz_projector/displays/projection_mask_display.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <OgreRenderSystem.h>
@@ -17,7 +18,6 @@
 #include <rviz/properties/status_property.h>
 #include <rviz/render_panel.h>
 #include <rviz/view_manager.h>
-#include <sensor_msgs/point_cloud2_iterator.h>
 
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
@@ -31,6 +31,15 @@ namespace
 constexpr int kDrainIntervalMs = 5;
 /// Cloud points this close to z = 0 are the floor itself, not something standing on it.
 constexpr double kFloorClearance = 0.03;
+/// A dense cloud is masked by cells (core snapToCells), at most this many: a 640x480 depth image
+/// would otherwise be 300,000 columns (9 million vertices) a frame.
+constexpr std::size_t kMaxCloudColumns = 20000;
+
+/// The cloud's cell side: Margin (so a column widens by at most half a margin), at least 5 cm.
+double cloudCell(double margin)
+{
+  return std::max(margin, 0.05);
+}
 
 RigidTransform fromOgre(const Ogre::Vector3& p, const Ogre::Quaternion& q)
 {
@@ -78,7 +87,7 @@ ProjectionMaskDisplay::~ProjectionMaskDisplay()
   {
     // The main view's window may be gone already (rviz closing): only a window OGRE still has.
     Ogre::RenderSystem* system = Ogre::Root::getSingletonPtr() ? Ogre::Root::getSingleton().getRenderSystem() : nullptr;
-    if (system && system->getRenderTarget(main_window_->getName()) == main_window_)
+    if (system && system->getRenderTarget(main_window_name_) == main_window_)
     {
       main_window_->removeListener(this);
     }
@@ -109,6 +118,7 @@ void ProjectionMaskDisplay::onInitialize()
   main_window_ = panel ? panel->getRenderWindow() : nullptr;
   if (main_window_)
   {
+    main_window_name_ = main_window_->getName();
     main_window_->addListener(this);
   }
   connect(&drain_timer_, &QTimer::timeout, this, &ProjectionMaskDisplay::drainQueue);
@@ -189,8 +199,15 @@ void ProjectionMaskDisplay::updateOutline()
   }
 }
 
-bool ProjectionMaskDisplay::tooOld(const ros::Time& stamp, const char* status, const char* what)
+bool ProjectionMaskDisplay::unusableStamp(const ros::Time& stamp, const char* status, const char* what)
 {
+  if (stamp.isZero())
+  {
+    setStatus(rviz::StatusProperty::Warn, status,
+              QString("%1 has no stamp (0): its age cannot be checked, dropped (a stale mask is worse than none)")
+                  .arg(what));
+    return true;
+  }
   const double max_age = max_age_property_->getFloat();
   const double age = (ros::Time::now() - stamp).toSec();
   if (max_age > 0.0 && age > max_age)
@@ -207,7 +224,7 @@ bool ProjectionMaskDisplay::tooOld(const ros::Time& stamp, const char* status, c
 
 void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPtr& msg)
 {
-  if (tooOld(msg->header.stamp, "Scan", "Scan"))
+  if (unusableStamp(msg->header.stamp, "Scan", "Scan"))
   {
     return;
   }
@@ -228,7 +245,7 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
   scan.ranges = msg->ranges.data();
   scan.count = msg->ranges.size();
   const MaskInputCount count = scanToFloorPoints(scan, fromOgre(position, orientation), scan_points_);
-  scan_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  scan_stamp_ = msg->header.stamp;
   if (count.ignored > 0)
   {
     setStatus(rviz::StatusProperty::Ok, "Scan",
@@ -243,51 +260,83 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
 
 void ProjectionMaskDisplay::onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg)
 {
-  if (tooOld(msg->header.stamp, "Point cloud", "Point cloud"))
+  pending_cloud_ = msg;  // a newer cloud replaces one still waiting for its transform
+  tryPendingCloud();
+}
+
+void ProjectionMaskDisplay::tryPendingCloud()
+{
+  if (!pending_cloud_)
   {
+    return;
+  }
+  const sensor_msgs::PointCloud2& msg = *pending_cloud_;
+  if (unusableStamp(msg.header.stamp, "Point cloud", "Point cloud"))
+  {
+    pending_cloud_.reset();
     return;
   }
   Ogre::Vector3 position;
   Ogre::Quaternion orientation;
-  if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
+  if (!context_->getFrameManager()->getTransform(msg.header, position, orientation))
+  {
+    // Kept and retried at every drain: tf often arrives after the cloud.
+    setStatus(rviz::StatusProperty::Warn, "Point cloud",
+              QString("Waiting for the transform from '%1' at the cloud's stamp (dropped after Max scan age)")
+                  .arg(QString::fromStdString(msg.header.frame_id)));
+    return;
+  }
+  const std::string problem = readCloudXyz(msg, cloud_scratch_);
+  const ros::Time stamp = msg.header.stamp;
+  pending_cloud_.reset();
+  if (!problem.empty())
   {
     setStatus(rviz::StatusProperty::Error, "Point cloud",
-              QString("No transform from '%1' at the cloud's stamp: dropped")
-                  .arg(QString::fromStdString(msg->header.frame_id)));
+              QString("Unusable cloud (%1): dropped").arg(QString::fromStdString(problem)));
     return;
   }
   const RigidTransform to_fixed = fromOgre(position, orientation);
-  cloud_scratch_.clear();
-  try
+  cloud_fixed_.clear();
+  for (const Vec3& point : cloud_scratch_)
   {
-    const std::size_t n = static_cast<std::size_t>(msg->width) * msg->height;
-    if (msg->data.size() < n * msg->point_step)
-    {
-      throw std::runtime_error("data shorter than width x height x point_step");
-    }
-    sensor_msgs::PointCloud2ConstIterator<float> x(*msg, "x"), y(*msg, "y"), z(*msg, "z");
-    for (std::size_t i = 0; i < n; ++i, ++x, ++y, ++z)
-    {
-      cloud_scratch_.push_back(to_fixed.apply(Vec3{*x, *y, *z}));
-    }
+    cloud_fixed_.push_back(to_fixed.apply(point));
   }
-  catch (const std::exception& e)
+  cloud_stamp_ = stamp;
+  updateCloudPoints();
+  rebuild();
+}
+
+void ProjectionMaskDisplay::updateCloudPoints()
+{
+  cloud_points_.clear();
+  if (cloud_stamp_.isZero())
   {
-    setStatus(rviz::StatusProperty::Error, "Point cloud", QString("Unusable cloud (%1): dropped").arg(e.what()));
     return;
   }
-  cloud_points_.clear();
   const MaskInputCount count =
-      cloudToFloorPoints(cloud_scratch_, kFloorClearance, height_property_->getFloat(), cloud_points_);
-  cloud_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+      cloudToFloorPoints(cloud_fixed_, kFloorClearance, height_property_->getFloat(), cloud_points_);
+  const bool complete = snapToCells(cloud_points_, cloudCell(margin_property_->getFloat()), kMaxCloudColumns);
+  if (!complete)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Point cloud",
+              QString("%1 points in more than %2 cells of %3 m: only the first %2 cells are masked")
+                  .arg(count.used)
+                  .arg(kMaxCloudColumns)
+                  .arg(cloudCell(margin_property_->getFloat())));
+    return;
+  }
   setStatus(rviz::StatusProperty::Ok, "Point cloud",
-            QString("%1 points masked; %2 on the floor, above Height or NaN").arg(count.used).arg(count.ignored));
-  rebuild();
+            QString("%1 points masked (%2 columns of %3 m cells); %4 on the floor, above Height or NaN")
+                .arg(count.used)
+                .arg(cloud_points_.size())
+                .arg(cloudCell(margin_property_->getFloat()))
+                .arg(count.ignored));
 }
 
 void ProjectionMaskDisplay::drainQueue()
 {
   path_queue_.callAvailable();
+  tryPendingCloud();
   releaseStale();
 }
 
@@ -324,6 +373,7 @@ void ProjectionMaskDisplay::releaseStale()
 
 void ProjectionMaskDisplay::updateShape()
 {
+  updateCloudPoints();  // Height filters the cloud's points, Margin sets its cells
   rebuild();
 }
 
@@ -332,6 +382,7 @@ void ProjectionMaskDisplay::updateCloudTopic()
   cloud_sub_.shutdown();
   cloud_points_.clear();
   cloud_stamp_ = ros::Time();
+  pending_cloud_.reset();
   deleteStatus("Point cloud");
   const std::string topic = cloud_topic_property_->getStdString();
   if (!initialized() || !isEnabled() || topic.empty())
@@ -357,6 +408,7 @@ void ProjectionMaskDisplay::clearMask()
   cloud_points_.clear();
   scan_stamp_ = ros::Time();
   cloud_stamp_ = ros::Time();
+  pending_cloud_.reset();
   rebuild();
 }
 
@@ -366,9 +418,20 @@ void ProjectionMaskDisplay::rebuild()
   {
     return;
   }
-  all_points_.assign(scan_points_.begin(), scan_points_.end());
-  all_points_.insert(all_points_.end(), cloud_points_.begin(), cloud_points_.end());
-  occluders_.build(all_points_, height_property_->getFloat(), margin_property_->getFloat());
+  const double height = height_property_->getFloat();
+  const double margin = margin_property_->getFloat();
+  occluders_.build(scan_points_, height, margin);
+  // Cloud points stand for their cells: the wider margin covers every point of the cell.
+  occluders_.append(cloud_points_, height, margin + 0.5 * cloudCell(margin));
+  if (!(height > 0.0 && margin > 0.0))
+  {
+    setStatus(rviz::StatusProperty::Warn, "Shape",
+              QString("%1 is 0: nothing is masked").arg(height > 0.0 ? "Margin" : "Height"));
+  }
+  else
+  {
+    deleteStatus("Shape");
+  }
   occluder_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue::Black);
   outline_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue(1.0f, 0.6f, 0.0f, 0.35f));
   ProjectionChangeNotifier::notify();

@@ -9,7 +9,7 @@
 // it was simulated for.
 //
 // Topics:   /demo/scan        sensor_msgs/LaserScan, frame base_laser
-//           /demo/pedestrian  visualization_msgs/Marker (a body and a head, map frame) for the main view
+//           /demo/pedestrian  visualization_msgs/MarkerArray (a body and a head, map frame) for the main view
 // tf:       static base_link -> base_laser
 #include <cmath>
 #include <string>
@@ -51,15 +51,19 @@ public:
     pnh_.param("laser_z", laser_z_, 0.3);
     double rate = 10.0;
     pnh_.param("rate", rate, 10.0);
-    if (!(speed_ > 0.0) || !(half_width_ > 0.0) || !(rate > 0.0) || !(radius_ > 0.0) || !(pause_ >= 0.0))
-    {
-      ROS_WARN("demo_pedestrian: speed, half_width, rate and radius must be > 0, pause >= 0: defaults used");
-      speed_ = 1.0;
-      half_width_ = 1.2;
-      rate = 10.0;
-      radius_ = 0.22;
-      pause_ = 3.0;
-    }
+    // Each unusable value falls back to its own default (the others are kept), with a warning.
+    const auto positive = [](const char* name, double& value, double fallback, bool zero_ok) {
+      if (!(zero_ok ? value >= 0.0 : value > 0.0) || !std::isfinite(value))
+      {
+        ROS_WARN("demo_pedestrian: ~%s = %g must be %s: %g used", name, value, zero_ok ? ">= 0" : "> 0", fallback);
+        value = fallback;
+      }
+    };
+    positive("speed", speed_, 0.5, false);
+    positive("half_width", half_width_, 1.0, false);
+    positive("rate", rate, 10.0, false);
+    positive("radius", radius_, 0.22, false);
+    positive("pause", pause_, 1.5, true);
     scan_pub_ = nh_.advertise<sensor_msgs::LaserScan>("/demo/scan", 5);
     marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("/demo/pedestrian", 5);
     geometry_msgs::TransformStamped mount;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace rviz_projector
 {
@@ -62,5 +64,66 @@ LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info)
   c.roi_width = info.roi.width;
   c.roi_height = info.roi.height;
   return c;
+}
+
+std::string readCloudXyz(const sensor_msgs::PointCloud2& cloud, std::vector<Vec3>& out)
+{
+  out.clear();
+  if (cloud.is_bigendian)
+  {
+    return "big-endian data is not supported";
+  }
+  std::uint64_t offsets[3] = {0, 0, 0};
+  const char* names[3] = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    bool found = false;
+    for (const sensor_msgs::PointField& field : cloud.fields)
+    {
+      if (field.name == names[axis])
+      {
+        if (field.datatype != sensor_msgs::PointField::FLOAT32 || field.count != 1)
+        {
+          return std::string("field '") + names[axis] + "' is not a single FLOAT32";
+        }
+        if (std::uint64_t(field.offset) + sizeof(float) > cloud.point_step)
+        {
+          return std::string("field '") + names[axis] + "' does not fit in point_step";
+        }
+        offsets[axis] = field.offset;
+        found = true;
+        break;
+      }
+    }
+    if (!found)
+    {
+      return std::string("no field '") + names[axis] + "'";
+    }
+  }
+  // 32-bit sizes: their products fit in 64 bits.
+  const std::uint64_t row_bytes = std::uint64_t(cloud.width) * cloud.point_step;
+  if (row_bytes > cloud.row_step)
+  {
+    return "width x point_step is larger than row_step";
+  }
+  if (std::uint64_t(cloud.height) * cloud.row_step > cloud.data.size())
+  {
+    return "data shorter than height x row_step";
+  }
+  out.reserve(std::size_t(cloud.width) * cloud.height);
+  for (std::uint64_t row = 0; row < cloud.height; ++row)
+  {
+    const std::uint8_t* point = cloud.data.data() + row * cloud.row_step;
+    for (std::uint64_t column = 0; column < cloud.width; ++column, point += cloud.point_step)
+    {
+      float xyz[3];
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        std::memcpy(&xyz[axis], point + offsets[axis], sizeof(float));  // no alignment assumed
+      }
+      out.push_back(Vec3{xyz[0], xyz[1], xyz[2]});
+    }
+  }
+  return std::string();
 }
 }  // namespace rviz_projector

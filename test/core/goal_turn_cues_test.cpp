@@ -264,6 +264,25 @@ TEST(GoalCues, WarningBlinksForItsTimeThenSteady)
   EXPECT_TRUE(t.frameAt(103.3).arrows);
 }
 
+TEST(GoalCues, AGoalIssuedLongerThanTheWarningTimeAgoGetsNoWarning)
+{
+  // rviz started (or the State topic set) while the robot already pursues a goal issued at t = 50:
+  // at t = 100 it is not new to anyone around, even if the robot happens to stand still.
+  GoalCueTimeline t = timeline(true);
+  t.update(GoalSummary{GoalPhase::Active, "g1", 50.0}, 100.0, true);
+  EXPECT_FALSE(t.frameAt(100.3).warning);
+  EXPECT_TRUE(t.frameAt(100.3).arrows) << "steady, not blinking";
+  // Issued 1.5 s ago (< 2 s warning time): warned, from now for the full warning time.
+  GoalCueTimeline u = timeline(true);
+  u.update(GoalSummary{GoalPhase::Active, "g2", 98.5}, 100.0, true);
+  EXPECT_TRUE(u.frameAt(100.3).warning);
+  EXPECT_FALSE(u.frameAt(100.3).arrows) << "dark half of the first period";
+  // A goal stamped in the future (another clock) or 0 (unknown): judged new.
+  GoalCueTimeline v = timeline(true);
+  v.update(GoalSummary{GoalPhase::Active, "g3", 0.0}, 100.0, true);
+  EXPECT_TRUE(v.frameAt(100.3).warning);
+}
+
 TEST(GoalCues, AStartedWarningRunsItsFullTimeWhenTheRobotStartsMoving)
 {
   GoalCueTimeline t = timeline(true);

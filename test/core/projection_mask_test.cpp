@@ -2,6 +2,7 @@
 // plane of Max lit height, against hand-computed values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -122,6 +123,92 @@ TEST(ProjectionMask, ThousandPointsAndBadSizes)
   EXPECT_TRUE(mesh.triangles().empty());
   mesh.build(points, 2.0, std::nan(""));
   EXPECT_TRUE(mesh.triangles().empty());
+}
+
+TEST(ProjectionMask, DenseCloudSnapsToCellCentresSortedAndUnique)
+{
+  // Cells of 0.1 m: [0, 0.1) x [0, 0.1) has centre (0.05, 0.05); -0.01 falls in [-0.1, 0).
+  std::vector<Vec2> points{{0.01, 0.02}, {0.09, 0.08}, {0.05, 0.05}, {-0.01, 0.02}, {0.15, 0.02},
+                           {std::nan(""), 0.0}, {1e300, 0.0}};
+  EXPECT_TRUE(snapToCells(points, 0.1, 100));
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_NEAR(points[0].x, -0.05, 1e-12);
+  EXPECT_NEAR(points[0].y, 0.05, 1e-12);
+  EXPECT_NEAR(points[1].x, 0.05, 1e-12);
+  EXPECT_NEAR(points[1].y, 0.05, 1e-12);
+  EXPECT_NEAR(points[2].x, 0.15, 1e-12);
+  EXPECT_NEAR(points[2].y, 0.05, 1e-12);
+  // A bad cell leaves the points as they are.
+  std::vector<Vec2> same{{0.01, 0.02}};
+  EXPECT_TRUE(snapToCells(same, 0.0, 100));
+  EXPECT_TRUE(snapToCells(same, std::nan(""), 100));
+  ASSERT_EQ(same.size(), 1u);
+  EXPECT_EQ(same[0].x, 0.01);
+}
+
+TEST(ProjectionMask, DenseCloudKeepsTheCellsOfTheFirstPointsUpToTheLimit)
+{
+  // 300,000 points on a 3 m x 1 m patch (a depth camera's cloud): 30 x 10 cells of 0.1 m.
+  std::vector<Vec2> points;
+  for (int i = 0; i < 300000; ++i)
+  {
+    points.push_back(Vec2{0.001 * (i % 3000) + 0.0005, 0.1 * ((i / 3000) % 10) + 0.05});
+  }
+  std::vector<Vec2> all = points;
+  EXPECT_TRUE(snapToCells(all, 0.1, 20000));
+  EXPECT_EQ(all.size(), 300u);
+  // Limit 5: the cells of the first points in input order (x = 0.0005 .. 0.4995 on row y = 0.05).
+  EXPECT_FALSE(snapToCells(points, 0.1, 5));
+  ASSERT_EQ(points.size(), 5u);
+  for (int k = 0; k < 5; ++k)
+  {
+    EXPECT_NEAR(points[k].x, 0.05 + 0.1 * k, 1e-9);
+    EXPECT_NEAR(points[k].y, 0.05, 1e-9);
+  }
+}
+
+TEST(ProjectionMask, ACellColumnWithHalfACellMoreMarginCoversEveryPointsOwnColumn)
+{
+  // Hand check of the display's rule: a point p in a cell of side c with centre q; p's column
+  // [p - m, p + m] lies inside q's column [q - m - c/2, q + m + c/2] on each axis.
+  const double m = 0.1, c = 0.1;
+  for (const Vec2& p : {Vec2{0.0001, 0.0001}, Vec2{0.0999, 0.0999}, Vec2{0.05, 0.0}, Vec2{-0.0001, 0.2}})
+  {
+    std::vector<Vec2> cell{p};
+    ASSERT_TRUE(snapToCells(cell, c, 10));
+    OccluderMesh own, wide;
+    own.build({p}, 1.0, m);
+    wide.build(cell, 1.0, m + 0.5 * c);
+    for (const MeshVertex& v : own.triangles())
+    {
+      double min_x = 1e9, max_x = -1e9, min_y = 1e9, max_y = -1e9;
+      for (const MeshVertex& w : wide.triangles())
+      {
+        min_x = std::min(min_x, w.position.x), max_x = std::max(max_x, w.position.x);
+        min_y = std::min(min_y, w.position.y), max_y = std::max(max_y, w.position.y);
+      }
+      EXPECT_GE(v.position.x, min_x - 1e-12);
+      EXPECT_LE(v.position.x, max_x + 1e-12);
+      EXPECT_GE(v.position.y, min_y - 1e-12);
+      EXPECT_LE(v.position.y, max_y + 1e-12);
+    }
+  }
+}
+
+TEST(ProjectionMask, AppendAddsColumnsOfItsOwnMargin)
+{
+  OccluderMesh mesh;
+  mesh.build({Vec2{0.0, 0.0}}, 2.0, 0.1);
+  mesh.append({Vec2{1.0, 0.0}}, 2.0, 0.3);
+  ASSERT_EQ(mesh.columns(), 2u);
+  double max_x = -1e9;
+  for (const MeshVertex& v : mesh.triangles())
+  {
+    max_x = std::max(max_x, v.position.x);
+  }
+  EXPECT_NEAR(max_x, 1.3, 1e-12);
+  mesh.clear();
+  EXPECT_EQ(mesh.columns(), 0u);
 }
 
 namespace

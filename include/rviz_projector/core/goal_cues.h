@@ -39,6 +39,7 @@ struct GoalSummary
 {
   GoalPhase phase = GoalPhase::None;
   std::string id;  ///< the goal the phase is about (empty for None)
+  double stamp = 0.0;  ///< that goal's goal_id.stamp (seconds; 0: unknown)
 };
 
 /**
@@ -83,7 +84,8 @@ struct GoalCueFrame
  *
  * - None: the default frame (everything drawn in Normal colours, steady).
  * - A goal becomes Active (a new id, or the same id after a terminal phase): if the warning is
- *   enabled and the robot stands still at that update, a warning starts: until start + warning_time
+ *   enabled, the robot stands still at that update and the goal was issued (its stamp) less than
+ *   warning_time ago (or its stamp is 0 / in the future), a warning starts: until start + warning_time
  *   arrows and destination blink together (blinkOn(t - start, warning_hz) decides both; Normal
  *   colours), then they are steady. A warning, once started, runs its full time even if the robot
  *   starts moving (at least the warning time: the visual half of the warning). Otherwise steady.

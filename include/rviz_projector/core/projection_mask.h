@@ -50,6 +50,18 @@ MaskInputCount cloudToFloorPoints(const std::vector<Vec3>& cloud, double floor_c
                                   std::vector<Vec2>& points);
 
 /**
+ * Thins dense floor points (a depth camera's cloud: 300,000 points a frame) to one point per
+ * occupied cell of a square grid of side `cell` (aligned with the fixed frame's axes, cells
+ * [k * cell, (k + 1) * cell)), placed at the cell's centre; the result is sorted and unique. A
+ * column of half-width `margin + cell / 2` around a cell centre contains the half-width `margin`
+ * column of every point of that cell, so masking the centres with the wider margin hides at least
+ * what masking every point would (and at most cell / 2 more on each side). Non-finite points are
+ * dropped; a cell <= 0 or non-finite leaves `points` unchanged. At most `max_cells` cells are kept
+ * (those of the first points in the input order); returns false when some were left out.
+ */
+bool snapToCells(std::vector<Vec2>& points, double cell, std::size_t max_cells);
+
+/**
  * The occluders: for each floor point a square column from the floor (z = 0 of the fixed frame)
  * to `height`, axis-aligned in the fixed frame, of half-width `margin` (so it contains every point
  * within `margin` of the return, and up to margin * sqrt(2) along the diagonals): four sides and a
@@ -61,7 +73,11 @@ class OccluderMesh
 {
 public:
   static constexpr std::size_t kVerticesPerColumn = 30;
+  /// Clears the mesh, then append(points, height, margin).
   void build(const std::vector<Vec2>& points, double height, double margin);
+  /// Adds the columns of `points` (of this height and half-width) to the mesh.
+  void append(const std::vector<Vec2>& points, double height, double margin);
+  void clear() { triangles_.clear(); }
   const std::vector<MeshVertex>& triangles() const { return triangles_; }
   std::size_t columns() const { return triangles_.size() / kVerticesPerColumn; }
 

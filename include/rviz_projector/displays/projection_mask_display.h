@@ -7,6 +7,7 @@
 
 #ifndef Q_MOC_RUN
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <OgreRenderTargetListener.h>
@@ -73,8 +74,14 @@ private Q_SLOTS:
 
 private:
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
-  /// Too old by Max scan age (ROS time): true, with a status, when the message must be dropped.
-  bool tooOld(const ros::Time& stamp, const char* status, const char* what);
+  /// Uses the pending cloud once tf has its transform at the cloud's stamp (a small tf filter:
+  /// retried at every drain until the cloud is older than Max scan age).
+  void tryPendingCloud();
+  /// The stored cloud's points between the floor and Height, thinned to cells (cloud_points_).
+  void updateCloudPoints();
+  /// Unusable by its stamp: zero (age unknown) or older than Max scan age (ROS time). True, with a
+  /// status, when the message must be dropped.
+  bool unusableStamp(const ros::Time& stamp, const char* status, const char* what);
   /// Drops scan and cloud once older than Max scan age (a stale mask is worse than none).
   void releaseStale();
   void rebuild();
@@ -90,8 +97,9 @@ private:
   ros::Subscriber cloud_sub_;
   std::vector<Vec2> scan_points_;
   std::vector<Vec2> cloud_points_;
-  std::vector<Vec2> all_points_;
-  std::vector<Vec3> cloud_scratch_;
+  std::vector<Vec3> cloud_scratch_;   // the last cloud, in its own frame
+  std::vector<Vec3> cloud_fixed_;     // the last cloud used, in the fixed frame (Height may change)
+  sensor_msgs::PointCloud2::ConstPtr pending_cloud_;
   ros::Time scan_stamp_;   // zero: no scan in the mask
   ros::Time cloud_stamp_;  // zero: no cloud in the mask
   OccluderMesh occluders_;
@@ -100,5 +108,6 @@ private:
   std::unique_ptr<FloorMesh> occluder_mesh_;
   std::unique_ptr<FloorMesh> outline_mesh_;
   Ogre::RenderWindow* main_window_ = nullptr;
+  std::string main_window_name_;  ///< kept: the window may be gone before this display (never ask it then)
 };
 }  // namespace rviz_projector

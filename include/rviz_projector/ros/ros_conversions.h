@@ -2,16 +2,19 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include "rviz_projector/core/lens_calibration.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/core/vec2.h"
+#include "rviz_projector/core/vec3.h"
 
 namespace rviz_projector
 {
@@ -31,4 +34,13 @@ std::size_t pathToFloorPoints(const nav_msgs::Path& path, const RigidTransform& 
 RigidTransform toRigidTransform(const geometry_msgs::Transform& transform);
 
 LensCalibration toLensCalibration(const sensor_msgs::CameraInfo& info);
+
+/**
+ * The x, y, z of every point of a PointCloud2 (FLOAT32 fields "x", "y", "z", count 1), in the
+ * cloud's own frame, row by row honouring row_step (rows may be padded). Checked before anything is
+ * read, without integer overflow: the fields exist and fit in point_step, width * point_step fits
+ * in row_step, height * row_step fits in data; a big-endian cloud is refused (not converted).
+ * `out` is cleared first; returns an empty string on success, else what is wrong (and `out` is empty).
+ */
+std::string readCloudXyz(const sensor_msgs::PointCloud2& cloud, std::vector<Vec3>& out);
 }  // namespace rviz_projector
