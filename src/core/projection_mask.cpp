@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <unordered_set>
 #include <utility>
 
 #include <opencv2/core.hpp>
@@ -63,52 +64,43 @@ bool snapToCells(std::vector<Vec2>& points, double cell, std::size_t max_cells)
   {
     return true;
   }
-  // Cell indices as integers (exact comparisons); points too far out for an int64 index are dropped.
-  constexpr double kIndexLimit = 9.0e15;
-  std::vector<std::pair<std::int64_t, std::int64_t>> cells;
-  cells.reserve(std::min(points.size(), max_cells));
+  // Cell indices as integers (exact comparisons); points too far out for a 32-bit index (2e9 cells:
+  // 10,000 km at 5 mm) are dropped. One pass in input order with a hash set (a depth camera's
+  // neighbouring points share their cell: the last cell is checked first), then the few cells sorted.
+  constexpr double kIndexLimit = 2.0e9;
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<std::pair<std::int32_t, std::int32_t>> cells;
   bool complete = true;
+  bool have_last = false;
+  std::uint64_t last = 0;
   for (const Vec2& p : points)
   {
     const double kx = std::floor(p.x / cell), ky = std::floor(p.y / cell);
-    if (!(std::isfinite(kx) && std::isfinite(ky) && std::abs(kx) < kIndexLimit && std::abs(ky) < kIndexLimit))
+    if (!(std::abs(kx) < kIndexLimit && std::abs(ky) < kIndexLimit))  // also false for NaN/Inf
     {
       continue;
     }
-    cells.emplace_back(static_cast<std::int64_t>(kx), static_cast<std::int64_t>(ky));
+    const auto ix = static_cast<std::int32_t>(kx), iy = static_cast<std::int32_t>(ky);
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(ix)) << 32) | std::uint32_t(iy);
+    if (have_last && key == last)
+    {
+      continue;
+    }
+    have_last = true;
+    last = key;
+    if (seen.count(key) != 0)
+    {
+      continue;
+    }
+    if (cells.size() == max_cells)
+    {
+      complete = false;  // a new cell beyond the limit: left out
+      continue;
+    }
+    seen.insert(key);
+    cells.emplace_back(ix, iy);
   }
   std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  if (cells.size() > max_cells)
-  {
-    // Keep the cells of the first points in input order (a scanner's order: deterministic).
-    std::vector<std::pair<std::int64_t, std::int64_t>> kept;
-    kept.reserve(max_cells);
-    std::vector<char> taken(cells.size(), 0);
-    for (const Vec2& p : points)
-    {
-      const double kx = std::floor(p.x / cell), ky = std::floor(p.y / cell);
-      if (!(std::isfinite(kx) && std::isfinite(ky) && std::abs(kx) < kIndexLimit && std::abs(ky) < kIndexLimit))
-      {
-        continue;
-      }
-      const std::pair<std::int64_t, std::int64_t> key(static_cast<std::int64_t>(kx), static_cast<std::int64_t>(ky));
-      const auto at = std::lower_bound(cells.begin(), cells.end(), key);
-      const auto index = static_cast<std::size_t>(at - cells.begin());
-      if (!taken[index])  // every key is in `cells`: it was built from the same points
-      {
-        taken[index] = 1;
-        kept.push_back(key);
-        if (kept.size() == max_cells)
-        {
-          break;
-        }
-      }
-    }
-    std::sort(kept.begin(), kept.end());
-    cells.swap(kept);
-    complete = false;
-  }
   points.clear();
   for (const auto& c : cells)
   {

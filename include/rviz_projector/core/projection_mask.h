@@ -56,7 +56,8 @@ MaskInputCount cloudToFloorPoints(const std::vector<Vec3>& cloud, double floor_c
  * column of half-width `margin + cell / 2` around a cell centre contains the half-width `margin`
  * column of every point of that cell, so masking the centres with the wider margin hides at least
  * what masking every point would (and at most cell / 2 more on each side). Non-finite points are
- * dropped; a cell <= 0 or non-finite leaves `points` unchanged. At most `max_cells` cells are kept
+ * dropped, and so are points more than 2e9 cells from the origin; a cell <= 0 or non-finite leaves
+ * `points` unchanged. At most `max_cells` cells are kept
  * (those of the first points in the input order); returns false when some were left out.
  */
 bool snapToCells(std::vector<Vec2>& points, double cell, std::size_t max_cells);
