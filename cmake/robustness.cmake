@@ -15,7 +15,11 @@ if(CATKIN_ENABLE_TESTING)
   # The bad-input matrix in a real rviz: one executable, one rostest per part of the matrix (each
   # its own process and time limit, so a crash in one part does not hide the others).
   catkin_add_executable_with_gtest(test_robustness EXCLUDE_FROM_ALL
-    test/rviz/robustness_test.cpp
+    test/rviz/robustness_camera_test.cpp
+    test/rviz/robustness_config_test.cpp
+    test/rviz/robustness_fixtures.h
+    test/rviz/robustness_lifecycle_test.cpp
+    test/rviz/robustness_path_test.cpp
   )
   target_link_libraries(test_robustness ${PROJECT_NAME}_rviz_test_support ${PROJECT_NAME} ${catkin_LIBRARIES}
                         Qt5::Widgets)

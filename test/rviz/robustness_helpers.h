@@ -1,4 +1,4 @@
-// Helpers of the robustness rostests (test/rviz/robustness_test.cpp): messages with bad values,
+// Helpers of the robustness rostests (test/rviz/robustness_*_test.cpp, robustness_fixtures.h): messages with bad values,
 // projector mounts, window and Ogre object counts, config loading.
 #pragma once
 
