@@ -41,7 +41,8 @@ add_dependencies(${PROJECT_NAME}_allocbench ${catkin_EXPORTED_TARGETS})
 # X11 (with its XShm, Xdamage, Xfixes parts) is found in CMakeLists.txt.
 if(X11_FOUND AND X11_XShm_FOUND AND X11_Xdamage_FOUND AND X11_Xfixes_FOUND)
   #catkin_lint: ignore uninstalled_target
-  add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp bench/e2e/x11_windows.cpp)
+  add_executable(${PROJECT_NAME}_bench_probe bench/e2e/bench_probe.cpp bench/e2e/probe_common.h bench/e2e/probe_cpu.h
+                                        bench/e2e/probe_screen.h bench/e2e/x11_windows.cpp)
   set_target_properties(${PROJECT_NAME}_bench_probe PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_bench_probe SYSTEM PRIVATE ${X11_INCLUDE_DIR})
   target_link_libraries(${PROJECT_NAME}_bench_probe ${catkin_LIBRARIES} ${X11_LIBRARIES} ${X11_Xext_LIB}

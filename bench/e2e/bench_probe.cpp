@@ -58,25 +58,13 @@
 
 #include "x11_windows.h"
 
+#include "probe_common.h"
+#include "probe_cpu.h"
+#include "probe_screen.h"
+
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::duration d)
-{
-  return std::chrono::duration<double>(d).count();
-}
-
-[[noreturn]] void fail(const std::string& what)
-{
-  std::fprintf(stderr, "bench_probe: %s\n", what.c_str());
-  std::exit(2);
-}
-
-void note(const std::string& what)
-{
-  std::fprintf(stderr, "[bench_probe] %s\n", what.c_str());
-}
+using namespace bench_probe;
 
 // ---- options --------------------------------------------------------------------------------
 struct Options
@@ -172,454 +160,6 @@ Options parseOptions(int argc, char** argv)
   if (o.latency_poses < 2) fail("--latency-poses N: at least 2");
   return o;
 }
-
-// ---- CPU from /proc --------------------------------------------------------------------------
-/// utime + stime of a process (all its threads), in clock ticks; -1 when it is gone.
-long long cpuTicks(pid_t pid)
-{
-  std::ifstream in("/proc/" + (pid == 0 ? std::string("self") : std::to_string(pid)) + "/stat");
-  std::string line;
-  if (!std::getline(in, line))
-  {
-    return -1;
-  }
-  // The command name (field 2) is in parentheses and may hold spaces: count fields after ')'.
-  const auto close = line.rfind(')');
-  if (close == std::string::npos)
-  {
-    return -1;
-  }
-  std::istringstream fields(line.substr(close + 2));
-  std::string field;
-  long long utime = 0, stime = 0;
-  for (int index = 3; fields >> field; ++index)
-  {
-    if (index == 14) utime = std::stoll(field);
-    if (index == 15)
-    {
-      stime = std::stoll(field);
-      break;
-    }
-  }
-  return utime + stime;
-}
-
-/// Resident set size of a process in MB (VmRSS of /proc/<pid>/status), NaN when it is gone.
-double rssMegabytes(pid_t pid)
-{
-  std::ifstream in("/proc/" + (pid == 0 ? std::string("self") : std::to_string(pid)) + "/status");
-  std::string line;
-  while (std::getline(in, line))
-  {
-    if (line.rfind("VmRSS:", 0) == 0)
-    {
-      return std::stod(line.substr(6)) / 1024.0;  // kB
-    }
-  }
-  return NAN;
-}
-
-/// utime + stime of every thread of a process, by thread group: "main" (the thread that runs Qt and
-/// rviz's update loop), "llvmpipe" (Mesa's rasterizer threads), "other" (ROS, tf, Qt helpers).
-std::map<std::string, long long> threadTicks(pid_t pid)
-{
-  std::map<std::string, long long> groups;
-  const std::string task = "/proc/" + std::to_string(pid) + "/task/";
-  DIR* dir = opendir(task.c_str());
-  if (!dir)
-  {
-    return groups;
-  }
-  while (dirent* entry = readdir(dir))
-  {
-    if (entry->d_name[0] < '0' || entry->d_name[0] > '9')
-    {
-      continue;
-    }
-    std::ifstream in(task + entry->d_name + "/stat");
-    std::string line;
-    if (!std::getline(in, line))
-    {
-      continue;
-    }
-    const auto open = line.find('('), close = line.rfind(')');
-    if (open == std::string::npos || close == std::string::npos)
-    {
-      continue;
-    }
-    const std::string comm = line.substr(open + 1, close - open - 1);
-    std::istringstream fields(line.substr(close + 2));
-    std::string field;
-    long long ticks = 0;
-    for (int index = 3; fields >> field; ++index)
-    {
-      if (index == 14) ticks += std::stoll(field);
-      if (index == 15)
-      {
-        ticks += std::stoll(field);
-        break;
-      }
-    }
-    const std::string group = std::to_string(pid) == entry->d_name ? "main"
-                              : comm.rfind("llvmpipe", 0) == 0  ? "llvmpipe"
-                                                                : "other";
-    groups[group] += ticks;
-  }
-  closedir(dir);
-  return groups;
-}
-
-/// Time all cores ran something (user, system, interrupts), and time the hypervisor gave them to
-/// someone else (steal: a virtual machine's CPUs are not always its own), in clock ticks.
-struct SystemTicks
-{
-  long long busy = 0;
-  long long steal = 0;
-};
-
-SystemTicks systemTicks()
-{
-  std::ifstream in("/proc/stat");
-  std::string cpu;
-  long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
-  in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
-  return SystemTicks{user + nice + system + irq + softirq, steal};
-}
-
-class CpuMeter
-{
-public:
-  CpuMeter(std::vector<std::pair<std::string, pid_t>> pids, std::string split_threads)
-    : pids_(std::move(pids)), split_(std::move(split_threads))
-  {
-    pids_.emplace_back("probe", 0);
-  }
-
-  void start()
-  {
-    start_time_ = Clock::now();
-    system_start_ = systemTicks();
-    start_.clear();
-    thread_start_.clear();
-    for (const auto& p : pids_)
-    {
-      start_.push_back(cpuTicks(p.second));
-      if (p.first == split_)
-      {
-        thread_start_ = threadTicks(p.second);
-      }
-    }
-  }
-
-  /// Cores used by each process since start().
-  std::vector<std::pair<std::string, double>> stop() const
-  {
-    const double wall = seconds(Clock::now() - start_time_);
-    const double hz = static_cast<double>(sysconf(_SC_CLK_TCK));
-    std::vector<std::pair<std::string, double>> out;
-    for (std::size_t i = 0; i < pids_.size(); ++i)
-    {
-      const long long now = cpuTicks(pids_[i].second);
-      out.emplace_back(pids_[i].first, now < 0 || start_[i] < 0 ? NAN : (now - start_[i]) / hz / wall);
-    }
-    for (const auto& p : pids_)
-    {
-      if (p.first != split_)
-      {
-        continue;
-      }
-      for (const auto& group : threadTicks(p.second))
-      {
-        const auto before = thread_start_.find(group.first);
-        const long long start = before == thread_start_.end() ? 0 : before->second;
-        out.emplace_back("thread:" + p.first + "." + group.first, std::max(0LL, group.second - start) / hz / wall);
-      }
-    }
-    const SystemTicks system = systemTicks();
-    out.emplace_back("system", (system.busy - system_start_.busy) / hz / wall);
-    out.emplace_back("steal", (system.steal - system_start_.steal) / hz / wall);
-    return out;
-  }
-
-  bool alive(const std::string& name) const
-  {
-    for (const auto& p : pids_)
-    {
-      if (p.first == name) return cpuTicks(p.second) >= 0;
-    }
-    return false;
-  }
-
-  const std::vector<std::pair<std::string, pid_t>>& pids() const { return pids_; }
-
-private:
-  std::vector<std::pair<std::string, pid_t>> pids_;
-  std::string split_;
-  std::vector<long long> start_;
-  std::map<std::string, long long> thread_start_;
-  SystemTicks system_start_;
-  Clock::time_point start_time_;
-};
-
-// ---- X11: the watched rectangle -----------------------------------------------------------
-struct Rect
-{
-  int x = 0, y = 0, width = 0, height = 0;
-};
-
-class ShmGrab
-{
-public:
-  ShmGrab(Display* display, const Rect& rect) : display_(display), rect_(rect)
-  {
-    const int screen = DefaultScreen(display_);
-    image_ = XShmCreateImage(display_, DefaultVisual(display_, screen), static_cast<unsigned>(DefaultDepth(display_, screen)),
-                             ZPixmap, nullptr, &info_, static_cast<unsigned>(rect.width),
-                             static_cast<unsigned>(rect.height));
-    if (!image_) fail("XShmCreateImage failed");
-    info_.shmid = shmget(IPC_PRIVATE, static_cast<std::size_t>(image_->bytes_per_line) * image_->height, IPC_CREAT | 0600);
-    if (info_.shmid < 0) fail("shmget failed");
-    info_.shmaddr = image_->data = static_cast<char*>(shmat(info_.shmid, nullptr, 0));
-    info_.readOnly = False;
-    if (!XShmAttach(display_, &info_)) fail("XShmAttach failed");
-    XSync(display_, False);
-    shmctl(info_.shmid, IPC_RMID, nullptr);  // freed once both sides detach
-  }
-  ~ShmGrab()
-  {
-    XShmDetach(display_, &info_);
-    XSync(display_, False);
-    shmdt(info_.shmaddr);
-    image_->data = nullptr;
-    XDestroyImage(image_);
-  }
-  ShmGrab(const ShmGrab&) = delete;
-  ShmGrab& operator=(const ShmGrab&) = delete;
-
-  /// Reads the rectangle of the screen (root window: what is shown there, whichever window).
-  void grab()
-  {
-    if (!XShmGetImage(display_, DefaultRootWindow(display_), image_, rect_.x, rect_.y, AllPlanes))
-    {
-      fail("XShmGetImage failed");
-    }
-  }
-  const char* data() const { return image_->data; }
-  std::size_t bytes() const { return static_cast<std::size_t>(image_->bytes_per_line) * image_->height; }
-  XImage* image() const { return image_; }
-
-private:
-  Display* display_;
-  Rect rect_;
-  XImage* image_ = nullptr;
-  XShmSegmentInfo info_{};
-};
-
-class Screen
-{
-public:
-  explicit Screen(double poll_ms) : poll_ms_(poll_ms)
-  {
-    display_ = XOpenDisplay(nullptr);
-    if (!display_) fail("cannot open the X display (DISPLAY unset?)");
-    if (!XShmQueryExtension(display_)) fail("the X server has no MIT-SHM extension");
-    int error_base = 0;
-    if (poll_ms_ <= 0.0)
-    {
-      int fixes_event = 0, fixes_error = 0;
-      if (!XDamageQueryExtension(display_, &damage_event_, &error_base) ||
-          !XFixesQueryExtension(display_, &fixes_event, &fixes_error))
-      {
-        note("no XDamage/XFixes: polling every 2 ms instead");
-        poll_ms_ = 2.0;
-      }
-    }
-    root_ = DefaultRootWindow(display_);
-    XWindowAttributes attributes;
-    XGetWindowAttributes(display_, root_, &attributes);
-    root_rect_ = Rect{0, 0, attributes.width, attributes.height};
-  }
-  ~Screen()
-  {
-    grabs_[0].reset();
-    grabs_[1].reset();
-    if (damage_) XDamageDestroy(display_, damage_);
-    if (parts_) XFixesDestroyRegion(display_, parts_);
-    XCloseDisplay(display_);
-  }
-
-  Display* display() const { return display_; }
-
-  /// The largest viewable window whose title contains `title`, or 0.
-  Window findWindow(const std::string& title)
-  {
-    return bench_x11::findLargestWindow(display_, root_, title);
-  }
-
-  Rect windowRect(Window window)
-  {
-    XWindowAttributes a;
-    XGetWindowAttributes(display_, window, &a);
-    int x = 0, y = 0;
-    Window child;
-    XTranslateCoordinates(display_, window, root_, 0, 0, &x, &y, &child);
-    return Rect{x, y, a.width, a.height};
-  }
-
-  Rect clipToScreen(const Rect& r) const
-  {
-    const int x0 = std::max(r.x, 0), y0 = std::max(r.y, 0);
-    const int x1 = std::min(r.x + r.width, root_rect_.width), y1 = std::min(r.y + r.height, root_rect_.height);
-    return Rect{x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
-  }
-
-  /// Starts watching a rectangle of the screen.
-  void watch(const Rect& rect)
-  {
-    rect_ = rect;
-    grabs_[0] = std::make_unique<ShmGrab>(display_, rect_);
-    grabs_[1] = std::make_unique<ShmGrab>(display_, rect_);
-    current_ = 0;
-    if (poll_ms_ <= 0.0 && !damage_)
-    {
-      damage_ = XDamageCreate(display_, root_, XDamageReportNonEmpty);
-      parts_ = XFixesCreateRegion(display_, nullptr, 0);
-    }
-    XSync(display_, False);
-    grabs_[current_]->grab();
-  }
-
-  /// Grabs a whole rectangle once (for finding the image in a window).
-  std::vector<std::uint32_t> snapshot(const Rect& rect)
-  {
-    ShmGrab grab(display_, rect);
-    grab.grab();
-    std::vector<std::uint32_t> pixels(static_cast<std::size_t>(rect.width) * rect.height);
-    for (int y = 0; y < rect.height; ++y)
-    {
-      for (int x = 0; x < rect.width; ++x)
-      {
-        pixels[static_cast<std::size_t>(y) * rect.width + x] = static_cast<std::uint32_t>(XGetPixel(grab.image(), x, y));
-      }
-    }
-    return pixels;
-  }
-
-  struct Event
-  {
-    Clock::time_point time;  // when the server told us it drew (or when we polled)
-    bool changed;            // any pixel of the rectangle differs from the previous grab
-  };
-
-  /**
-   * Waits until the watched rectangle was drawn into (or the deadline); grabs it and says whether
-   * its content changed. Returns false at the deadline.
-   */
-  bool next(Clock::time_point deadline, Event& event)
-  {
-    if (poll_ms_ > 0.0)
-    {
-      const auto due = last_poll_ + std::chrono::microseconds(static_cast<long>(poll_ms_ * 1000.0));
-      const auto wake = std::min(due, deadline);
-      std::this_thread::sleep_until(wake);
-      if (wake == deadline && due > deadline)
-      {
-        return false;
-      }
-      last_poll_ = Clock::now();
-      event.time = last_poll_;
-      event.changed = grabAndCompare();
-      ++draws_;
-      return true;
-    }
-    while (true)
-    {
-      if (!waitForDamage(deadline))
-      {
-        return false;
-      }
-      const Clock::time_point time = Clock::now();
-      if (!damageTouchesRect())
-      {
-        continue;
-      }
-      event.time = time;
-      event.changed = grabAndCompare();
-      ++draws_;
-      return true;
-    }
-  }
-
-  /// Draw operations seen in the rectangle so far (frames presented, changed or not).
-  long draws() const { return draws_; }
-
-private:
-  bool waitForDamage(Clock::time_point deadline)
-  {
-    while (true)
-    {
-      while (XPending(display_) > 0)
-      {
-        XEvent e;
-        XNextEvent(display_, &e);
-        if (e.type == damage_event_ + XDamageNotify)
-        {
-          // Drain whatever else is queued, then take the whole accumulated damage at once.
-          while (XPending(display_) > 0)
-          {
-            XNextEvent(display_, &e);
-          }
-          return true;
-        }
-      }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-      if (left <= 0)
-      {
-        return false;
-      }
-      pollfd fd{ConnectionNumber(display_), POLLIN, 0};
-      poll(&fd, 1, static_cast<int>(std::min<long long>(left, 100)));
-    }
-  }
-
-  bool damageTouchesRect()
-  {
-    XDamageSubtract(display_, damage_, None, parts_);
-    int count = 0;
-    XRectangle* rects = XFixesFetchRegion(display_, parts_, &count);
-    bool touches = false;
-    for (int i = 0; i < count && !touches; ++i)
-    {
-      const XRectangle& r = rects[i];
-      touches = r.x < rect_.x + rect_.width && r.x + r.width > rect_.x && r.y < rect_.y + rect_.height &&
-                r.y + r.height > rect_.y;
-    }
-    if (rects) XFree(rects);
-    return touches;
-  }
-
-  bool grabAndCompare()
-  {
-    const int next = 1 - current_;
-    grabs_[next]->grab();
-    const bool changed = std::memcmp(grabs_[next]->data(), grabs_[current_]->data(), grabs_[next]->bytes()) != 0;
-    current_ = next;
-    return changed;
-  }
-
-  Display* display_ = nullptr;
-  Window root_ = 0;
-  Rect root_rect_;
-  Rect rect_;
-  double poll_ms_;
-  int damage_event_ = 0;
-  Damage damage_ = 0;
-  XserverRegion parts_ = 0;
-  std::unique_ptr<ShmGrab> grabs_[2];
-  int current_ = 0;
-  long draws_ = 0;
-  Clock::time_point last_poll_ = Clock::now();
-};
 
 // ---- paths -----------------------------------------------------------------------------------
 constexpr double kPoseStep = 0.025;
@@ -899,7 +439,7 @@ private:
 
   bool waitForChange(Clock::time_point deadline, Clock::time_point* when = nullptr)
   {
-    Screen::Event e;
+    WatchedScreen::Event e;
     while (screen_.next(deadline, e))
     {
       if (e.changed)
@@ -929,7 +469,7 @@ private:
   void sleepWatching(double s)
   {
     const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-    Screen::Event e;
+    WatchedScreen::Event e;
     while (screen_.next(end, e))
     {
     }
@@ -943,7 +483,7 @@ private:
     const auto start = Clock::now();
     const auto end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.trial_seconds));
     long changes = 0;
-    Screen::Event e;
+    WatchedScreen::Event e;
     while (screen_.next(end, e))
     {
       changes += e.changed ? 1 : 0;
@@ -1073,7 +613,7 @@ private:
   }
 
   Options o_;
-  Screen screen_;
+  WatchedScreen screen_;
   CpuMeter cpu_;
   std::mt19937 rng_;
   std::ofstream out_;
