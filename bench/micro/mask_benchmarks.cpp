@@ -6,6 +6,7 @@
 // rows) read, moved to the fixed frame, filtered by height, thinned to cells and meshed; baseline:
 // reading the cloud alone.
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -75,13 +76,14 @@ void BM_MaskUpdate(benchmark::State& state)
 }
 BENCHMARK(BM_MaskUpdate)->Name("MaskUpdate+Mesh")->Arg(1000)->Arg(5000)->Unit(benchmark::kMicrosecond);
 
-/// 640 x 480 points, x y z float + 4 bytes of intensity, rows padded by 16 bytes: a wall 3 m ahead
-/// (x forward), 2.4 m wide, 0..1.8 m high, with a person-sized blob 1.5 m ahead in the middle.
-sensor_msgs::PointCloud2 depthCloud()
+/// `points` / 640 rows of 640 points (a 640x480 depth camera: 307200), x y z float + 4 bytes of
+/// intensity, rows padded by 16 bytes: a wall 3 m ahead (x forward), 2.4 m wide, 0..1.8 m high,
+/// with a person-sized blob 1.5 m ahead in the middle.
+sensor_msgs::PointCloud2 depthCloud(std::int64_t points)
 {
   sensor_msgs::PointCloud2 cloud;
   cloud.width = 640;
-  cloud.height = 480;
+  cloud.height = static_cast<std::uint32_t>(points / 640);
   cloud.point_step = 16;
   cloud.row_step = cloud.width * cloud.point_step + 16;
   const char* names[] = {"x", "y", "z"};
@@ -100,7 +102,7 @@ sensor_msgs::PointCloud2 depthCloud()
     for (std::uint32_t c = 0; c < cloud.width; ++c)
     {
       const float y = 1.2f - 2.4f * static_cast<float>(c) / 640.0f;
-      const float z = 1.8f - 1.8f * static_cast<float>(r) / 480.0f;
+      const float z = 1.8f - 1.8f * static_cast<float>(r) / static_cast<float>(cloud.height);
       const float x = std::abs(y) < 0.25f && z > 0.05f ? 1.5f : 3.0f;
       const float xyz[3] = {x, y, z};
       std::memcpy(cloud.data.data() + std::size_t(r) * cloud.row_step + std::size_t(c) * cloud.point_step, xyz,
@@ -112,18 +114,18 @@ sensor_msgs::PointCloud2 depthCloud()
 
 void BM_MaskCloudReadOnly(benchmark::State& state)
 {
-  const sensor_msgs::PointCloud2 cloud = depthCloud();
+  const sensor_msgs::PointCloud2 cloud = depthCloud(state.range(0));
   std::vector<Vec3> xyz;
   for (auto _ : state)
   {
     benchmark::DoNotOptimize(readCloudXyz(cloud, xyz));
   }
 }
-BENCHMARK(BM_MaskCloudReadOnly)->Name("MaskCloud/read only")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MaskCloudReadOnly)->Name("MaskCloud/read only")->Arg(640 * 480)->Unit(benchmark::kMillisecond);
 
 void BM_MaskCloud(benchmark::State& state)
 {
-  const sensor_msgs::PointCloud2 cloud = depthCloud();
+  const sensor_msgs::PointCloud2 cloud = depthCloud(state.range(0));
   const RigidTransform pose = RigidTransform::fromQuaternion(0, 0, 0.1, 0.995, Vec3{1, 2, 0.3});
   Ogre::SceneManager* scene = rviz_projector_test::headlessScene();
   FloorMesh mesh(scene, scene->getRootSceneNode());
@@ -146,5 +148,5 @@ void BM_MaskCloud(benchmark::State& state)
   }
   state.counters["columns"] = static_cast<double>(occluders.columns());
 }
-BENCHMARK(BM_MaskCloud)->Name("MaskCloud+Mesh (640x480)")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MaskCloud)->Name("MaskCloud+Mesh")->Arg(640 * 480)->Unit(benchmark::kMillisecond);
 }  // namespace
