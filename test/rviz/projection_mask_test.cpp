@@ -117,6 +117,8 @@ protected:
     mask_ = dynamic_cast<rviz_projector::ProjectionMaskDisplay*>(d);
     ASSERT_NE(mask_, nullptr);
     ASSERT_TRUE(waitFor([&] { return scan_pub_.getNumSubscribers() > 0; }));
+    // The laser's static tf in rviz's buffer before the first scan (a scan may be published at once).
+    ASSERT_TRUE(waitFor([&] { return rviz_->manager()->getTF2BufferPtr()->canTransform("map", "test_laser", ros::Time()); }));
   }
 
   void at(double t) { ros::Time::setNow(start_ + ros::Duration(t)); }
