@@ -2,18 +2,27 @@
 // return's column blocks the projector's beam (the test intersects each ray with the column itself,
 // from the raw geometry and image_geometry's pixels - never with the code under test), the main view
 // shows nothing of the mask unless asked, stale and old scans release the mask with a status, invalid
-// returns are ignored, and Max lit height clips the projector view. ROS time is simulated.
+// returns are ignored, a scan is placed by the tf at its own stamp, a point cloud masks by cells (and
+// waits for its tf), and Max lit height clips the projector view. ROS time is simulated.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include <geometry_msgs/TransformStamped.h>
 #include <rviz/display.h>
 #include <rviz/properties/property.h>
+#include <rviz/visualization_manager.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
 
 #include "projector_test_fixture.h"
 #include "rviz_projector/displays/projected_path_display.h"
@@ -68,6 +77,31 @@ bool crossesBox(const Vec3& a, const Vec3& b, const Vec3& lo, const Vec3& hi)
   return true;
 }
 
+/// An occluder as the issue defines it: axis-aligned, floor to `height`, half-width `half` around `centre`.
+struct Column
+{
+  Vec2 centre;
+  double half = 0.1;
+  double height = 2.0;
+};
+
+/// Does the ray from the projector's optical centre to the floor point `p` pass through one of the
+/// columns, each grown by `grow` (m) sideways and upwards?
+bool occluded(const std::vector<Column>& columns, const Vec2& p, double grow)
+{
+  const Vec3 eye = kDemoMount.position;
+  for (const Column& c : columns)
+  {
+    const double w = c.half + grow;
+    if (crossesBox(eye, Vec3{p.x, p.y, 0.0}, Vec3{c.centre.x - w, c.centre.y - w, 0.0},
+                   Vec3{c.centre.x + w, c.centre.y + w, c.height + grow}))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 class ProjectionMaskTest : public ProjectorSceneTest
 {
 protected:
@@ -83,19 +117,22 @@ protected:
     mask_ = dynamic_cast<rviz_projector::ProjectionMaskDisplay*>(d);
     ASSERT_NE(mask_, nullptr);
     ASSERT_TRUE(waitFor([&] { return scan_pub_.getNumSubscribers() > 0; }));
+    // The laser's static tf in rviz's buffer before the first scan (a scan may be published at once).
+    ASSERT_TRUE(waitFor([&] { return rviz_->manager()->getTF2BufferPtr()->canTransform("map", "test_laser", ros::Time()); }));
   }
 
   void at(double t) { ros::Time::setNow(start_ + ros::Duration(t)); }
 
-  /// A scan from test_laser: beams at 0, 0.01, 0.02... rad with these ranges, stamped now.
-  void publishScan(const std::vector<float>& ranges, const ros::Time& stamp = ros::Time::now())
+  /// A scan from `frame`: beams at 0, 0.01, 0.02... rad with these ranges, stamped now.
+  void publishScan(const std::vector<float>& ranges, const ros::Time& stamp = ros::Time::now(),
+                   const std::string& frame = "test_laser")
   {
     sensor_msgs::LaserScan scan;
-    scan.header.frame_id = "test_laser";
+    scan.header.frame_id = frame;
     scan.header.stamp = stamp;
     scan.angle_min = 0.0f;
     scan.angle_increment = 0.01f;
-    scan.angle_max = 0.01f * static_cast<float>(ranges.size() - 1);
+    scan.angle_max = ranges.empty() ? 0.0f : 0.01f * static_cast<float>(ranges.size() - 1);
     scan.range_min = 0.05f;
     scan.range_max = 10.0f;
     scan.ranges = ranges;
@@ -108,14 +145,28 @@ protected:
     return frame.pixel(int(std::lround(px.x)), int(std::lround(px.y)));
   }
 
-  /// Floor points on the arrows' shafts (1 cm inside each end) of the path 0.3 -> 2.5, in view.
+  /// The path 0.3 -> 2.5 (or through `via`) drawn right on the floor (Height above floor 0, not the
+  /// default 1 cm lift): the floor points the oracle judges are then the drawn points.
+  bool addFloorPath(const std::vector<Vec2>& points = {{0.3, 0.0}, {2.5, 0.0}})
+  {
+    rviz_projector::ProjectedPathDisplay* path = addPath("/test/plan", points);
+    if (path)
+    {
+      path->subProp("Height above floor")->setValue(0.0);
+    }
+    return path != nullptr;
+  }
+
+  /// Floor points on the arrows' shafts (tip - 0.18 .. tip - 0.08; 1 cm inside each end, every
+  /// centimetre) of the path 0.3 -> 2.5, in view.
   std::vector<Vec2> shaftPoints() const
   {
     std::vector<Vec2> points;
     for (double tip = kTip0; tip - 0.18 >= 0.3; tip -= kSpacing)
     {
-      for (double x = tip - 0.17; x <= tip - 0.09; x += 0.01)
+      for (int i = 0; i <= 8; ++i)
       {
+        const double x = tip - 0.17 + 0.01 * i;
         const Vec2 px = windowPixel({x, 0.0});
         if (px.x > 2 && px.y > 2 && px.x < 1277 && px.y < 797)
         {
@@ -126,6 +177,55 @@ protected:
     return points;
   }
 
+  /// One sample of a moving (non-static) transform map -> `child` at `t` s of test time, straight
+  /// into rviz's tf buffer (as a tf listener would put it).
+  void tfSample(const std::string& child, double t, double x, double y, double z)
+  {
+    geometry_msgs::TransformStamped s = stampedTransform("map", child, x, y, z, {0.0, 0.0, 0.0, 1.0});
+    s.header.stamp = start_ + ros::Duration(t);
+    rviz_->manager()->getTF2BufferPtr()->setTransform(s, "projection_mask_test");
+  }
+
+  /// Shaft points of `frame` (image part) that break the rule "black where a column blocks the ray,
+  /// magenta elsewhere" (points within 1 cm of a column's outline are not judged). With `report`,
+  /// each is a test failure. `dark`/`lit` count the judged points.
+  int mismatches(const QImage& frame, const std::vector<Column>& columns, bool report, int* dark = nullptr,
+                 int* lit = nullptr) const
+  {
+    int wrong = 0;
+    for (const Vec2& p : shaftPoints())
+    {
+      if (occluded(columns, p, 0.01) != occluded(columns, p, -0.01))
+      {
+        continue;  // within 1 cm of the column's outline: a pixel either way
+      }
+      const bool masked = occluded(columns, p, 0.0);
+      const bool ok = sameColour(colourAt(frame, p), masked ? kBlack : kArrowMagenta, 30);
+      wrong += ok ? 0 : 1;
+      if (int* count = masked ? dark : lit)
+      {
+        ++*count;
+      }
+      if (report)
+      {
+        EXPECT_TRUE(ok) << "shaft point x = " << p.x << " should be " << (masked ? "masked" : "lit");
+      }
+    }
+    return wrong;
+  }
+
+  /// Grabs until the shafts match `columns` (or 5 s pass), then judges that frame; returns it.
+  QImage expectShafts(const std::vector<Column>& columns, int min_dark = 10, int min_lit = 10)
+  {
+    const QImage frame =
+        imagePart(grabWhen([&](const QImage& image) { return mismatches(imagePart(image), columns, false) == 0; }));
+    int dark = 0, lit = 0;
+    EXPECT_EQ(mismatches(frame, columns, true, &dark, &lit), 0);
+    EXPECT_GE(dark, min_dark) << "the column hides part of the path";
+    EXPECT_GE(lit, min_lit);
+    return frame;
+  }
+
   ros::Time start_;
   ros::Publisher scan_pub_;
   rviz_projector::ProjectionMaskDisplay* mask_ = nullptr;
@@ -134,41 +234,14 @@ protected:
 
 TEST_F(ProjectionMaskTest, ArrowsAreCutExactlyWhereTheColumnBlocksTheBeam)
 {
-  ASSERT_NE(addPath("/test/plan", {{0.3, 0.0}, {1.0, 0.0}, {2.5, 0.0}}), nullptr);
+  ASSERT_TRUE(addFloorPath({{0.3, 0.0}, {1.0, 0.0}, {2.5, 0.0}}));
   grabWithArrows();
-  publishScan({1.2f});  // one return straight ahead of the laser: at (1.2, 0) on the floor
+  publishScan({1.3f});  // one return straight ahead of the laser: at (1.3, 0) on the floor
   ASSERT_TRUE(waitFor([&] { return mask_->columns() == 1; }));
-  // The column: 0.1 m margin around (1.2, 0), floor to 2 m. A floor point is dark when the ray from
-  // the projector's optical centre to it passes through the column.
-  const Vec3 eye = kDemoMount.position;
-  const auto occluded = [&](const Vec2& p, double grow) {
-    return crossesBox(eye, Vec3{p.x, p.y, 0.0}, Vec3{1.1 - grow, -0.1 - grow, 0.0}, Vec3{1.3 + grow, 0.1 + grow, 2.0 + grow});
-  };
-  const QImage frame = imagePart(grabWhen([&](const QImage& image) {
-    return !sameColour(colourAt(image, {1.2, 0.0}), kArrowMagenta, 30) &&
-           sameColour(colourAt(image, {0.6 - 0.13, 0.0}), kArrowMagenta, 30);
-  }));
-  saveShot(frame, "mask-gap");
-  int dark = 0, lit = 0;
-  for (const Vec2& p : shaftPoints())
-  {
-    if (occluded(p, 0.01) != occluded(p, -0.01))
-    {
-      continue;  // within 1 cm of the column's outline: a pixel either way
-    }
-    if (occluded(p, 0.0))
-    {
-      EXPECT_TRUE(sameColour(colourAt(frame, p), kBlack, 30)) << "shaft point x = " << p.x << " should be masked";
-      ++dark;
-    }
-    else
-    {
-      EXPECT_TRUE(sameColour(colourAt(frame, p), kArrowMagenta, 30)) << "shaft point x = " << p.x << " should be lit";
-      ++lit;
-    }
-  }
-  EXPECT_GE(dark, 20) << "the column hides part of the path";
-  EXPECT_GE(lit, 20);
+  // The column: 0.1 m margin around (1.3, 0), floor to 2 m. A floor point is dark when the ray from
+  // the projector's optical centre to it passes through the column. Its front (x = 1.2) falls on a
+  // shaft (1.18 .. 1.26): the margin shows in the pixels.
+  saveShot(expectShafts({Column{{1.3, 0.0}}}, 20, 20), "mask-gap");
   EXPECT_TRUE(statusOf(mask_, "Scan").text.contains("1 returns masked"));
   // The projector's Visibility ticks the mask by default (a new projector would too).
   EXPECT_TRUE(projector_->subProp("Visibility")->subProp("Projection mask")->getValue().toBool());
@@ -177,15 +250,24 @@ TEST_F(ProjectionMaskTest, ArrowsAreCutExactlyWhereTheColumnBlocksTheBeam)
 TEST_F(ProjectionMaskTest, MainViewShowsNothingOfTheMaskUnlessAsked)
 {
   rviz_->setTopDownView(1.2, 0.0, 200.0);
+  ASSERT_TRUE(addFloorPath());
+  const Vec2 under{1.2, 0.0};  // on a shaft (1.18 .. 1.26), right under the column
+  const auto at_under = [&](const QImage& image, QRgb colour) { return sameColour(colourAt(image, under), colour, 30); };
+  QImage frame = imagePart(grabWhen([&](const QImage& image) { return at_under(imagePart(image), kArrowMagenta); }));
+  ASSERT_TRUE(at_under(frame, kArrowMagenta)) << "the projector lights the shaft first";
+  ASSERT_TRUE(waitForMainViewFrames(3)) << "the view and the path are in the main view";
   const QImage before = rviz_->renderMainView();
+  const QPoint c = rviz_->topDownPixel(1.2, 0.0);
+  ASSERT_TRUE(sameColour(before.pixel(c), kArrowMagenta, 30)) << "the main view shows the shaft there";
   publishScan({1.2f});
   ASSERT_TRUE(waitFor([&] { return mask_->columns() == 1; }));
-  spinFor(0.1);  // rviz renders its main view meanwhile (a span, not a condition)
+  // The projector does draw it: black over the floor point right under the column...
+  frame = imagePart(grabWhen([&](const QImage& image) { return at_under(imagePart(image), kBlack); }));
+  EXPECT_TRUE(at_under(frame, kBlack)) << "the projector view masks the column";
+  // ...while the main view, rendered after the projector drew the mask, is unchanged.
   const QImage masked = rviz_->renderMainView();
-  const QPoint c = rviz_->topDownPixel(1.2, 0.0);
   EXPECT_EQ(masked.pixel(c), before.pixel(c)) << "the main view draws no occluder";
   EXPECT_EQ(countColour(masked, kBlack, 10), countColour(before, kBlack, 10));
-  // The projector does draw it (black over the floor point right under the column).
   mask_->subProp("Show in main view")->setValue(true);
   const QImage outlined = rviz_->renderMainView();
   EXPECT_NE(outlined.pixel(c), before.pixel(c)) << "Show in main view draws the translucent outline";
@@ -195,7 +277,7 @@ TEST_F(ProjectionMaskTest, MainViewShowsNothingOfTheMaskUnlessAsked)
 
 TEST_F(ProjectionMaskTest, StaleScanReleasesTheMaskAndOldScansAreDropped)
 {
-  ASSERT_NE(addPath("/test/plan", {{0.3, 0.0}, {2.5, 0.0}}), nullptr);
+  ASSERT_TRUE(addFloorPath());
   grabWithArrows();
   const Vec2 behind{1.6 - 0.13, 0.0};  // a shaft point in the column's shadow
   publishScan({1.2f});
@@ -223,10 +305,158 @@ TEST_F(ProjectionMaskTest, InvalidReturnsAreIgnoredAndCounted)
   EXPECT_TRUE(statusOf(mask_, "Scan").text.contains("2 returns masked; 4 ignored"));
   publishScan({});
   ASSERT_TRUE(waitFor([&] { return mask_->columns() == 0; }));
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("0 returns masked"); }));
+  EXPECT_FALSE(statusOf(mask_, "Shape").present);
   mask_->subProp("Margin")->setValue(-1.0);  // clamped to 0: nothing to draw, nothing breaks
   publishScan({1.2f});
-  spinFor(0.1);
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("1 returns masked"); }))
+      << "the new scan was processed";
   EXPECT_EQ(mask_->columns(), 0u);
+  EXPECT_EQ(statusOf(mask_, "Shape").level, rviz::StatusProperty::Warn);
+  EXPECT_TRUE(statusOf(mask_, "Shape").text.contains("Margin is 0: nothing is masked"));
+  // The same scan with a margin: one column; Height 0 then masks nothing either, and says so.
+  mask_->subProp("Margin")->setValue(0.1);
+  ASSERT_TRUE(waitFor([&] { return mask_->columns() == 1; }));
+  EXPECT_FALSE(statusOf(mask_, "Shape").present);
+  mask_->subProp("Height")->setValue(0.0);
+  ASSERT_TRUE(waitFor([&] { return mask_->columns() == 0; }));
+  EXPECT_TRUE(statusOf(mask_, "Shape").text.contains("Height is 0: nothing is masked"));
+}
+
+TEST_F(ProjectionMaskTest, ScanWithoutStampIsDroppedAndMasksNothing)
+{
+  ASSERT_TRUE(addFloorPath());
+  grabWithArrows();
+  publishScan({1.2f}, ros::Time());
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("no stamp"); }));
+  EXPECT_EQ(statusOf(mask_, "Scan").level, rviz::StatusProperty::Warn);
+  EXPECT_EQ(mask_->columns(), 0u);
+  expectShafts({}, 0, 20);  // every shaft point lit
+}
+
+TEST_F(ProjectionMaskTest, ScanIsPlacedByTheTransformAtItsOwnStamp)
+{
+  ASSERT_TRUE(addFloorPath());
+  grabWithArrows();
+  // The scanner moves: x = 0 at 0.1 s, x = 0.5 at 0.3 s (tf samples, not static).
+  tfSample("moving_laser", 0.1, 0.0, 0.0, 0.3);
+  tfSample("moving_laser", 0.3, 0.5, 0.0, 0.3);
+  at(0.35);
+  publishScan({1.2f}, start_ + ros::Duration(0.1), "moving_laser");  // taken at 0.1 s, arriving late
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("1 returns masked"); }));
+  ASSERT_EQ(mask_->columns(), 1u);
+  // Where the pose at 0.1 s puts the return: (1.2, 0), not (1.7, 0) as the newest pose would; the
+  // shafts between 1.1 and 1.6 tell the two apart.
+  expectShafts({Column{{1.2, 0.0}}}, 20, 20);
+}
+
+namespace
+{
+/// A PointCloud2 of float x, y, z (and 4 unused bytes) per point in `rows` rows, each row followed
+/// by the bytes of `padding` (a point no reader may take: row_step is larger than width x point_step).
+sensor_msgs::PointCloud2 makeCloud(const std::string& frame, const ros::Time& stamp, const std::vector<Vec3>& points,
+                                   unsigned rows, const Vec3& padding, bool with_z = true)
+{
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header.frame_id = frame;
+  cloud.header.stamp = stamp;
+  cloud.height = rows;
+  cloud.width = static_cast<unsigned>(points.size() / rows);
+  const char* names[3] = {"x", "y", "z"};
+  for (unsigned i = 0; i < (with_z ? 3u : 2u); ++i)
+  {
+    sensor_msgs::PointField f;
+    f.name = names[i];
+    f.offset = 4 * i;
+    f.datatype = sensor_msgs::PointField::FLOAT32;
+    f.count = 1;
+    cloud.fields.push_back(f);
+  }
+  cloud.point_step = 16;
+  cloud.row_step = cloud.width * cloud.point_step + cloud.point_step;
+  cloud.data.resize(std::size_t(cloud.row_step) * rows, 0);
+  const auto put = [&](std::size_t at, const Vec3& p) {
+    const float xyz[3] = {float(p.x), float(p.y), float(p.z)};
+    std::memcpy(&cloud.data[at], xyz, sizeof(xyz));
+  };
+  for (unsigned r = 0; r < rows; ++r)
+  {
+    for (unsigned c = 0; c < cloud.width; ++c)
+    {
+      put(std::size_t(r) * cloud.row_step + c * cloud.point_step, points[r * cloud.width + c]);
+    }
+    put(std::size_t(r) * cloud.row_step + cloud.width * cloud.point_step, padding);
+  }
+  cloud.is_dense = true;
+  return cloud;
+}
+}  // namespace
+
+TEST_F(ProjectionMaskTest, PointCloudMasksByCellsOnceItsTransformArrives)
+{
+  ros::Publisher cloud_pub = nh_.advertise<sensor_msgs::PointCloud2>("/test/cloud", 2);
+  mask_->subProp("Point cloud topic")->setValue("/test/cloud");
+  ASSERT_TRUE(waitFor([&] { return cloud_pub.getNumSubscribers() > 0; }));
+  ASSERT_TRUE(addFloorPath());
+  grabWithArrows();
+  // A person-like blob in map: points on a 0.2 m radius cylinder around (1.55, 0.013), 0.1 .. 1.7 m
+  // high (the centre keeps every point at least 9 mm from a 0.1 m cell's edge). Then what must not
+  // mask, in front of it: points on the floor (z = 1 cm < 3 cm) and above Height (2.3 m).
+  const Vec2 centre{1.55, 0.013};
+  std::vector<Vec3> in_map;
+  for (int k = 1; k <= 17; ++k)
+  {
+    for (int i = 0; i < 20; ++i)
+    {
+      const double a = 2.0 * M_PI * i / 20.0;
+      in_map.push_back(Vec3{centre.x + 0.2 * std::cos(a), centre.y + 0.2 * std::sin(a), 0.1 * k});
+    }
+  }
+  const std::size_t blob = in_map.size();
+  for (int i = 0; i < 8; ++i)
+  {
+    in_map.push_back(Vec3{0.72 + 0.01 * i, 0.013, 0.01});
+    in_map.push_back(Vec3{0.97 + 0.01 * i, 0.013, 2.3});
+  }
+  // The sensor's frame is map moved by (0.4, 0, 0.5): the cloud is in that frame.
+  const Vec3 sensor{0.4, 0.0, 0.5};
+  std::vector<Vec3> in_sensor;
+  for (const Vec3& p : in_map)
+  {
+    in_sensor.push_back(Vec3{p.x - sensor.x, p.y - sensor.y, p.z - sensor.z});
+  }
+  // Row padding holding a point at (0.72, 0.013, 0.5) in map: masked if row_step were ignored.
+  const Vec3 decoy{0.72 - sensor.x, 0.013 - sensor.y, 0.5 - sensor.z};
+  at(0.1);
+  cloud_pub.publish(makeCloud("test_depth", ros::Time::now(), in_sensor, 2, decoy));
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Point cloud").text.contains("Waiting for the transform"); }));
+  EXPECT_EQ(mask_->columns(), 0u);
+  tfSample("test_depth", 0.0, sensor.x, sensor.y, sensor.z);  // tf arrives after the cloud
+  tfSample("test_depth", 0.2, sensor.x, sensor.y, sensor.z);
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Point cloud").text.contains("points masked"); }));
+  EXPECT_TRUE(statusOf(mask_, "Point cloud").text.startsWith(QString("%1 points masked").arg(blob)))
+      << statusOf(mask_, "Point cloud").text.toStdString();
+  // The expected columns, by the documented rule: cells [k 0.1, (k + 1) 0.1) (cell = max(Margin,
+  // 0.05)), one column per occupied cell at its centre, half-width Margin + cell / 2.
+  std::set<std::pair<long, long>> cells;
+  for (std::size_t i = 0; i < blob; ++i)
+  {
+    cells.emplace(std::lround(std::floor(in_map[i].x / 0.1)), std::lround(std::floor(in_map[i].y / 0.1)));
+  }
+  std::vector<Column> columns;
+  for (const auto& c : cells)
+  {
+    columns.push_back(Column{{(double(c.first) + 0.5) * 0.1, (double(c.second) + 0.5) * 0.1}, 0.1 + 0.05, 2.0});
+  }
+  EXPECT_EQ(mask_->columns(), columns.size());
+  // The blob's front (x = 1.35, cell 1.3 .. 1.4) masks from x = 1.2 on: on the shaft 1.18 .. 1.26.
+  expectShafts(columns, 20, 20);
+  // A cloud without z: an error, the cloud dropped, rviz going on (the projector still draws).
+  cloud_pub.publish(makeCloud("test_depth", ros::Time::now(), in_sensor, 2, decoy, false));
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Point cloud").text.contains("Unusable cloud"); }));
+  EXPECT_EQ(statusOf(mask_, "Point cloud").level, rviz::StatusProperty::Error);
+  EXPECT_TRUE(statusOf(mask_, "Point cloud").text.contains("no field 'z'"));
+  EXPECT_GT(countColour(grabWithArrows(), kArrowMagenta), 100);
 }
 
 TEST_F(ProjectionMaskTest, MaxLitHeightClipsTheProjectorViewOnly)
