@@ -392,8 +392,12 @@ TEST_F(PathCuesTest, PreMotionWarningBlinksForTheWarningTimeThenSteady)
     {
       // The robot starts moving (0.6 m ahead: the horizon drops the arrow with its tip at 0.85, the one
       // at 1.10 stays) and the status repeats, as move_base's does: the started warning runs on.
+      // The display reads tf when the clock moves on: it ticks forward in ms steps (still lit).
       publishStaticTransform("map", "base_link", 0.9, 0.0, 0.0, 0.0);
+      double tick = t;
       const QImage moved = grabUntil([&](const QImage& image) {
+        tick = std::min(tick + 0.001, 0.7);
+        at(tick);
         return sameColour(colourAt(image, {0.85 - 0.13, 0.0}), kBlack, 20) &&
                sameColour(colourAt(image, {1.10 - 0.13, 0.0}), kArrowMagenta, 30);
       });
