@@ -226,6 +226,7 @@ TEST_F(PathCuesTest, MarchingArrowsSitWhereTheTimeSaysAndReplansChangeNothing)
       }
       return true;
     });
+    saveShot(frame, t < 0.5 ? "cues-marching-1" : "cues-marching-2");
     int checked = 0;
     for (double tip : tips)
     {
@@ -348,6 +349,7 @@ TEST_F(PathCuesTest, GoalStatesColourTheCues)
   publishStatus("g1", actionlib_msgs::GoalStatus::SUCCEEDED);
   const QImage flash = grabUntil([&](const QImage& image) { return countColour(image, kWhite, 40) > 50; });
   EXPECT_TRUE(sameColour(colourAt(flash, {1.5, 0.0}), kWhite, 40)) << "the destination flashes in Succeeded color";
+  saveShot(flash, "cues-succeeded");
   EXPECT_EQ(countColour(flash, kArrowMagenta), 0);
   at(1.6);  // 0.6 s after the success: cleared
   const QImage cleared = grabUntil([&](const QImage& image) { return countColour(image, kBlack) == image.width() * image.height(); });
