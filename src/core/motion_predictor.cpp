@@ -158,8 +158,9 @@ std::string describePrediction(const Prediction& p)
     case Prediction::Jump:
       return "off: the pose jumped (relocalisation or teleport)";
     case Prediction::Gap:
-      std::snprintf(text, sizeof(text), "off: newest pose %.0f ms old (gap in the motion data)", p.age * 1e3);
-      return text;
+      // No age in the text: it would change with every frame while tf is silent (and each change of a
+      // property repaints rviz's whole property tree).
+      return "off: no new pose (gap in the motion data)";
     case Prediction::TooFast:
       std::snprintf(text, sizeof(text), "off: %.2f m/s, %.0f deg/s is faster than a robot drives", p.speed, deg);
       return text;

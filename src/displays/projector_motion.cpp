@@ -17,7 +17,7 @@ constexpr double kOdometryTimeout = 0.5;
 /// A jump, gap or too fast motion stays in the status this long (a moment is too short to read).
 constexpr double kAlarmHold = 2.0;
 /// The Prediction line changes at most this often (it is text in the Displays panel).
-constexpr double kLineInterval = 0.25;
+constexpr double kLineInterval = 1.0;  // s; each change repaints rviz's property tree (costly on software rendering)
 
 bool isAlarm(Prediction::State state)
 {
@@ -185,13 +185,15 @@ void ProjectorMotion::report(const MotionSettings& settings, const std::string& 
   level_shown_ = static_cast<int>(level);
   status_shown_ = status;
 
-  // The text is built only when it may be shown (4 times a second at most) and its figures changed:
+  // The text is built only when it may be shown and its figures changed:
   // a still robot builds no text (and allocates nothing) per frame.
   out.line_changed = false;
-  const std::array<long, 6> key{settings.enabled ? 1L : 0L, static_cast<long>(last_.state),
+  const std::array<long, 5> key{settings.enabled ? 1L : 0L, static_cast<long>(last_.state),
                                 std::lround(last_.horizon * 1e3), std::lround(last_.speed * 100.0),
-                                std::lround(last_.twist.wz * 573.0), std::lround(last_.age * 1e3)};
-  if (key != line_key_ && (line_time_ < 0.0 || steady_now - line_time_ >= kLineInterval))
+                                std::lround(last_.twist.wz * 573.0)};
+  // A new state (or Enabled toggled) shows at once; changed figures of the same state once a second.
+  const bool state_changed = key[0] != line_key_[0] || key[1] != line_key_[1];
+  if (key != line_key_ && (state_changed || line_time_ < 0.0 || steady_now - line_time_ >= kLineInterval))
   {
     line_time_ = steady_now;
     line_key_ = key;

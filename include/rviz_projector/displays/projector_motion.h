@@ -101,7 +101,7 @@ private:
   int level_shown_ = -1;
   std::string line_shown_;
   double line_time_ = -1.0;      ///< steady time the line was last built
-  std::array<long, 6> line_key_{};  ///< the figures (rounded as shown) the line was built from
+  std::array<long, 5> line_key_{};  ///< the figures (rounded as shown) the line was built from
   double alarm_until_ = -1.0;    ///< a jump/gap/too-fast warning stays up until this steady time
   std::string alarm_;
 };
