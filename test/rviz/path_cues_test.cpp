@@ -133,6 +133,24 @@ protected:
     cue("State topic")->setValue("/test/status");
   }
 
+  /// The robot stands still at x 0.3 on a 1.5 m path; State topic set; pre-motion warning on
+  /// (2 s at 2 Hz). False when the path display could not be added.
+  bool standingRobotWithWarning()
+  {
+    publishStaticTransform("map", "base_link", 0.3, 0.0, 0.0, 0.0);
+    path_ = addPath("/test/plan", straightPath(1.5));
+    if (path_ == nullptr)
+    {
+      return false;
+    }
+    useStateTopic();
+    rviz::Property* warning = cue("State topic")->subProp("Pre-motion warning");
+    warning->subProp("Warning time")->setValue(2.0);
+    warning->subProp("Blink frequency")->setValue(2.0);
+    warning->setValue(true);
+    return true;
+  }
+
   ros::Time start_;
   rviz_projector::ProjectedPathDisplay* path_ = nullptr;
   ros::Publisher status_pub_;
@@ -372,14 +390,7 @@ TEST_F(PathCuesTest, GoalStatesColourTheCues)
 
 TEST_F(PathCuesTest, PreMotionWarningBlinksForTheWarningTimeThenSteady)
 {
-  publishStaticTransform("map", "base_link", 0.3, 0.0, 0.0, 0.0);  // standing still at the start
-  path_ = addPath("/test/plan", straightPath(1.5));
-  ASSERT_NE(path_, nullptr);
-  useStateTopic();
-  rviz::Property* warning = cue("State topic")->subProp("Pre-motion warning");
-  warning->subProp("Warning time")->setValue(2.0);
-  warning->subProp("Blink frequency")->setValue(2.0);
-  warning->setValue(true);
+  ASSERT_TRUE(standingRobotWithWarning());
   cue("Horizon")->setValue(true);  // from the robot on: shows where the display sees the robot
   grabWithArrows();
   spinFor(0.2);  // a few frames: the robot's stillness is seen (wall-time span; the sim clock stands)
@@ -421,14 +432,7 @@ TEST_F(PathCuesTest, PreMotionWarningBlinksForTheWarningTimeThenSteady)
 
 TEST_F(PathCuesTest, AGoalIssuedLongAgoDoesNotWarnAFreshOneDoes)
 {
-  publishStaticTransform("map", "base_link", 0.3, 0.0, 0.0, 0.0);  // standing still at the start
-  path_ = addPath("/test/plan", straightPath(1.5));
-  ASSERT_NE(path_, nullptr);
-  useStateTopic();
-  rviz::Property* warning = cue("State topic")->subProp("Pre-motion warning");
-  warning->subProp("Warning time")->setValue(2.0);
-  warning->subProp("Blink frequency")->setValue(2.0);
-  warning->setValue(true);
+  ASSERT_TRUE(standingRobotWithWarning());
   grabWithArrows();
   spinFor(0.2);  // a few frames: the robot's stillness is seen (wall-time span; the sim clock stands)
   const auto lit = [&](const QImage& image) { return countColour(image, kArrowMagenta) > 100 && countColour(image, kGreen, 40) > 50; };
