@@ -296,11 +296,11 @@ void ProjectionMaskDisplay::tryPendingCloud()
     return;
   }
   const RigidTransform to_fixed = fromOgre(position, orientation);
-  cloud_fixed_.clear();
-  for (const Vec3& point : cloud_scratch_)
+  for (Vec3& point : cloud_scratch_)
   {
-    cloud_fixed_.push_back(to_fixed.apply(point));
+    point = to_fixed.apply(point);  // in place: no second copy of a 300,000-point cloud
   }
+  cloud_fixed_.swap(cloud_scratch_);  // both buffers keep their capacity for the next cloud
   cloud_stamp_ = stamp;
   updateCloudPoints();
   rebuild();

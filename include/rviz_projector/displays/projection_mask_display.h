@@ -97,7 +97,7 @@ private:
   ros::Subscriber cloud_sub_;
   std::vector<Vec2> scan_points_;
   std::vector<Vec2> cloud_points_;
-  std::vector<Vec3> cloud_scratch_;   // the last cloud, in its own frame
+  std::vector<Vec3> cloud_scratch_;   // the cloud being read (its own frame, then the fixed frame)
   std::vector<Vec3> cloud_fixed_;     // the last cloud used, in the fixed frame (Height may change)
   sensor_msgs::PointCloud2::ConstPtr pending_cloud_;
   ros::Time scan_stamp_;   // zero: no scan in the mask
