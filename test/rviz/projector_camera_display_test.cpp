@@ -29,6 +29,7 @@
 #include <rviz/visualization_manager.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <std_msgs/Empty.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -509,6 +510,49 @@ TEST_F(ProjectorSceneTest, RendersOnChangeWithoutRvizUpdatesAndNotOtherwise)
   }
   EXPECT_TRUE(arrived) << "the new path never reached the projector window";
   EXPECT_GT(projector_->framesRendered(), rendered);
+  rviz_->manager()->startUpdate();
+}
+
+TEST_F(ProjectorSceneTest, RenderingNeverRunsCallbacksOfRvizsGlobalQueue)
+{
+  // Issue 11, defect 2: the display never spins ROS's global callback queue. rviz owns it, and one
+  // of its callbacks (~load_config) deletes every display, this one included. A message waits in
+  // the global queue while only Qt's event loop runs (rviz's update stopped) and the projector
+  // renders frame after frame: its callback must not run until the test itself spins.
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  rviz_->manager()->stopUpdate();
+  int calls = 0;
+  ros::Subscriber probe = nh_.subscribe<std_msgs::Empty>("/test/global_queue_probe", 1,
+                                                         [&calls](const std_msgs::Empty::ConstPtr&) { ++calls; });
+  ros::Publisher probe_pub = nh_.advertise<std_msgs::Empty>("/test/global_queue_probe", 1);
+  ASSERT_TRUE(pumpQtUntil([&] { return probe_pub.getNumSubscribers() > 0; }));
+  probe_pub.publish(std_msgs::Empty());
+  ASSERT_TRUE(pumpQtUntil([] { return !ros::getGlobalCallbackQueue()->isEmpty(); }))
+      << "the probe message never reached the global queue";
+  // New paths through the path display's own queue keep the projector rendering.
+  const std::uint64_t rendered = projector_->framesRendered();
+  for (int i = 1; i <= 10; ++i)
+  {
+    nav_msgs::Path path;
+    path.header.frame_id = "map";
+    for (double x : {0.5, 2.0})
+    {
+      geometry_msgs::PoseStamped pose;
+      pose.header = path.header;
+      pose.pose.position.x = x;
+      pose.pose.position.y = 0.02 * i;
+      pose.pose.orientation.w = 1;
+      path.poses.push_back(pose);
+    }
+    path_pub_.publish(path);
+    const std::uint64_t before = projector_->framesRendered();
+    pumpQtUntil([&] { return projector_->framesRendered() > before; }, 2.0);
+  }
+  EXPECT_GE(projector_->framesRendered(), rendered + 5) << "the projector did not render while the probe waited";
+  EXPECT_EQ(calls, 0) << "a callback of the global queue ran inside the display";
+  // Positive control: the message is there, and the test's own spin delivers it.
+  ros::spinOnce();
+  EXPECT_EQ(calls, 1);
   rviz_->manager()->startUpdate();
 }
 
