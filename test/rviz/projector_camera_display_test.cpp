@@ -447,6 +447,23 @@ bool pumpQtUntil(const std::function<bool()>& done, double timeout = 5.0)
   return done();
 }
 
+/// A two-pose path in map from x = 0.5 to x = 2.0 m at `y`.
+nav_msgs::Path pathAlongX(double y)
+{
+  nav_msgs::Path path;
+  path.header.frame_id = "map";
+  for (double x : {0.5, 2.0})
+  {
+    geometry_msgs::PoseStamped pose;
+    pose.header = path.header;
+    pose.pose.position.x = x;
+    pose.pose.position.y = y;
+    pose.pose.orientation.w = 1;
+    path.poses.push_back(pose);
+  }
+  return path;
+}
+
 /// The output window's pixels as the X server has them, without rendering.
 QImage peek(rviz_projector::ProjectorOutputWindow* window)
 {
@@ -474,18 +491,7 @@ TEST_F(ProjectorSceneTest, RendersOnChangeWithoutRvizUpdatesAndNotOtherwise)
   EXPECT_GT(projector_->framesSkipped(), skipped);
 
   // A new path (arrows elsewhere) reaches the window through the projector's own timer.
-  nav_msgs::Path moved;
-  moved.header.frame_id = "map";
-  for (double x : {0.5, 2.0})
-  {
-    geometry_msgs::PoseStamped pose;
-    pose.header = moved.header;
-    pose.pose.position.x = x;
-    pose.pose.position.y = 0.15;
-    pose.pose.orientation.w = 1;
-    moved.poses.push_back(pose);
-  }
-  path_pub_.publish(moved);
+  path_pub_.publish(pathAlongX(0.15));
   // The old path's arrow nearest the middle of the lit area, moved sideways by 0.15 m.
   Vec2 old_mid{0.0, 0.0};
   for (const auto& a : path->spacedPath().arrows)
@@ -533,18 +539,7 @@ TEST_F(ProjectorSceneTest, RenderingNeverRunsCallbacksOfRvizsGlobalQueue)
   const std::uint64_t rendered = projector_->framesRendered();
   for (int i = 1; i <= 10; ++i)
   {
-    nav_msgs::Path path;
-    path.header.frame_id = "map";
-    for (double x : {0.5, 2.0})
-    {
-      geometry_msgs::PoseStamped pose;
-      pose.header = path.header;
-      pose.pose.position.x = x;
-      pose.pose.position.y = 0.02 * i;
-      pose.pose.orientation.w = 1;
-      path.poses.push_back(pose);
-    }
-    path_pub_.publish(path);
+    path_pub_.publish(pathAlongX(0.02 * i));
     const std::uint64_t before = projector_->framesRendered();
     pumpQtUntil([&] { return projector_->framesRendered() > before; }, 2.0);
   }
