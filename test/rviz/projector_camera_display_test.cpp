@@ -23,6 +23,7 @@
 #include <QThread>
 #include <QWindow>
 #include <nav_msgs/Path.h>
+#include <ros/callback_queue.h>
 #include <rviz/display.h>
 #include <rviz/display_group.h>
 #include <rviz/render_panel.h>
