@@ -58,17 +58,19 @@ check_demo() {
   rm -rf "$out"
   mark="rp-test-demo-$$-$(date +%s%N)"
   local started=$SECONDS status=0 attempt
-  for attempt in 1 2; do
+  for attempt in 1 2 3; do
     status=0
     rm -rf "$out"
     RP_TEST_DEMO_MARK="$mark" RP_WS="$RP_WS" DEMO_OUTPUT="$out" DEMO_SECONDS=0 DEMO_INTERVAL=0.5 DEMO_TIMEOUT=90 \
       timeout -k 10 240 "$RP_ROOT/scripts/demo" "${options[@]}" >"$log" 2>&1 || status=$?
-    # Known, unsolved (doc/notes/startup-crash.md): under load, Mesa's software renderer now and
-    # then crashes rviz while it starts up (SIGSEGV/SIGABRT). This check is about the demo script:
-    # one new start is allowed, printed, never hidden; a second crash fails.
-    if [ "$status" -ne 0 ] && [ "$attempt" -eq 1 ] &&
+    # Known (doc/notes/startup-crash.md): Mesa's software renderer now and then crashes rviz
+    # (SIGSEGV/SIGABRT); stock rviz with two render windows crashes the same way, without this
+    # package. The demo starts rviz twice (demo, crosshairs), and CI once saw a crash in both
+    # attempts. This check is about the demo script: two new starts are allowed, each printed,
+    # never hidden; a third crash fails, and so does anything else at once.
+    if [ "$status" -ne 0 ] && [ "$attempt" -lt 3 ] &&
       grep -Eq 'REQUIRED process \[rviz-[0-9]+\] has died' "$log" && grep -Eq 'exit code -(6|11)' "$log"; then
-      echo "KNOWN ISSUE: rviz died during start-up in $label (doc/notes/startup-crash.md), running it once more:"
+      echo "KNOWN ISSUE: rviz died in $label (attempt $attempt of 3; Mesa llvmpipe, doc/notes/startup-crash.md), running it once more:"
       grep -E 'exit code -|free\(\)|Segmentation' "$log" | head -n 3 | sed 's/^/  | /'
       continue
     fi
