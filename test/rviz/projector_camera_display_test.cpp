@@ -39,6 +39,7 @@
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "projector_test_fixture.h"
+#include "robustness_helpers.h"
 
 using rviz_projector::ProjectorCameraDisplay;
 using rviz_projector::Vec2;
@@ -451,18 +452,7 @@ bool pumpQtUntil(const std::function<bool()>& done, double timeout = 5.0)
 /// A two-pose path in map from x = 0.5 to x = 2.0 m at `y`.
 nav_msgs::Path pathAlongX(double y)
 {
-  nav_msgs::Path path;
-  path.header.frame_id = "map";
-  for (double x : {0.5, 2.0})
-  {
-    geometry_msgs::PoseStamped pose;
-    pose.header = path.header;
-    pose.pose.position.x = x;
-    pose.pose.position.y = y;
-    pose.pose.orientation.w = 1;
-    path.poses.push_back(pose);
-  }
-  return path;
+  return rviz_projector_test::makePath("map", {Vec3{0.5, y, 0.0}, Vec3{2.0, y, 0.0}});
 }
 
 /// The output window's pixels as the X server has them, without rendering.

@@ -1,4 +1,5 @@
 #include "projector_test_fixture.h"
+#include "robustness_helpers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -369,18 +370,12 @@ rviz_projector::ProjectedPathDisplay* ProjectorSceneTest::addPath(const std::str
   rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
   d->subProp("Topic")->setValue(QString::fromStdString(topic));
   path_pub_ = nh_.advertise<nav_msgs::Path>(topic, 1, true);
-  nav_msgs::Path path;
-  path.header.frame_id = "map";
+  std::vector<Vec3> floor;
   for (const Vec2& p : points)
   {
-    geometry_msgs::PoseStamped pose;
-    pose.header = path.header;
-    pose.pose.position.x = p.x;
-    pose.pose.position.y = p.y;
-    pose.pose.orientation.w = 1;
-    path.poses.push_back(pose);
+    floor.push_back(Vec3{p.x, p.y, 0.0});
   }
-  path_pub_.publish(path);
+  path_pub_.publish(makePath("map", floor));
   auto* display = dynamic_cast<rviz_projector::ProjectedPathDisplay*>(d);
   EXPECT_TRUE(waitFor([&] { return display && !display->spacedPath().arrows.empty(); }));
   return display;
