@@ -13,6 +13,12 @@ double dataAge(double stamp, double now)
   return now > stamp ? now - stamp : 0.0;
 }
 
+bool isFromTheFuture(double stamp, double now, double timeout)
+{
+  return stamp != 0.0 && std::isfinite(stamp) && std::isfinite(now) && std::isfinite(timeout) && timeout > 0.0 &&
+         stamp - now > timeout;
+}
+
 bool isStale(double age, double timeout)
 {
   return std::isfinite(timeout) && timeout > 0.0 && age > timeout;

@@ -1,5 +1,7 @@
 #include "rviz_projector/core/motion_predictor.h"
 
+#include "rviz_projector/core/angle.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,12 +19,6 @@ constexpr double kSameStamp = 1e-6;
 /// Position and heading steps a jump must exceed beyond the jump speeds (tf jitter is no jump).
 constexpr double kJumpSlack = 0.01;
 constexpr double kJumpYawSlack = 0.02;
-
-double wrapAngle(double a)
-{
-  const double r = std::remainder(a, 2.0 * kPi);  // in [-pi, pi]
-  return r <= -kPi ? r + 2.0 * kPi : r;           // in (-pi, pi]
-}
 
 /// sin(t)/t and (1 - cos(t))/t, with their series near 0.
 void arcFactors(double t, double& a, double& b)
@@ -43,7 +39,7 @@ PlanarTwist logRelative(const PlanarPose& from, const PlanarPose& to)
   const double c = std::cos(from.yaw), s = std::sin(from.yaw);
   const double dx = to.x - from.x, dy = to.y - from.y;
   const double bx = c * dx + s * dy, by = -s * dx + c * dy;  // in `from`'s body frame
-  const double th = wrapAngle(to.yaw - from.yaw);
+  const double th = wrapToPi(to.yaw - from.yaw);
   double a, b;
   arcFactors(th, a, b);
   const double det = a * a + b * b;  // > 0 for |th| < 2 pi
@@ -188,7 +184,7 @@ bool MotionPredictor::isJump(const Sample& from, const Sample& to) const
 {
   const double dt = std::abs(to.stamp - from.stamp);
   const Vec3 d = to.pose.translation() - from.pose.translation();
-  const double yaw = std::abs(wrapAngle(to.planar.yaw - from.planar.yaw));
+  const double yaw = std::abs(wrapToPi(to.planar.yaw - from.planar.yaw));
   return norm(d) > limits_.jump_speed * dt + kJumpSlack || yaw > limits_.jump_yaw_rate * dt + kJumpYawSlack;
 }
 
@@ -279,7 +275,7 @@ bool MotionPredictor::stands() const
   {
     const Sample& s = samples_[i];
     const Vec3 d = s.pose.translation() - newest.pose.translation();
-    if (norm(d) > limits_.stop_distance || std::abs(wrapAngle(s.planar.yaw - newest.planar.yaw)) > limits_.stop_angle)
+    if (norm(d) > limits_.stop_distance || std::abs(wrapToPi(s.planar.yaw - newest.planar.yaw)) > limits_.stop_angle)
     {
       return false;
     }

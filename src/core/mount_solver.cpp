@@ -35,13 +35,6 @@ struct Fit
   PinholeModel lens;
 };
 
-std::string num(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 /// Depth of a world point in the optical frame.
 double depthOf(const Pose& pose, const Vec3& w)
 {
@@ -88,8 +81,11 @@ Fit fitFixedLens(const PinholeModel& lens, const std::vector<FloorPoint>& points
   const std::vector<cv::Point2d> image = imagePoints(points, which);
   const cv::Mat k(cameraMatrix(lens));
   std::vector<cv::Mat> rvecs, tvecs;
-  const std::vector<int> methods = coplanarZ(points, which) ? std::vector<int>{cv::SOLVEPNP_IPPE}
-                                                            : std::vector<int>{cv::SOLVEPNP_SQPNP, cv::SOLVEPNP_EPNP};
+  // Coplanar points: IPPE, and SQPnP as well (IPPE gave NaN poses for some exact 8-point subsets of
+  // the 3x3 pattern, left by the outlier search; SQPnP solves planar sets too).
+  const std::vector<int> methods = coplanarZ(points, which)
+                                       ? std::vector<int>{cv::SOLVEPNP_IPPE, cv::SOLVEPNP_SQPNP}
+                                       : std::vector<int>{cv::SOLVEPNP_SQPNP, cv::SOLVEPNP_EPNP};
   for (int method : methods)
   {
     std::vector<cv::Mat> r, t;
@@ -299,28 +295,28 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   // fit that still holds it is pulled away from several (the largest leave-one-out residual is no
   // guide: a pulled fit extrapolates badly to the corner crosshairs, and a bad corner crosshair
   // pulls the fit towards itself).
+  // A point with a wrong z (typed in cm, or a plane its crosshair's ray cannot reach) is such an
+  // outlier too: its residual is infinite, and a fit that holds it may not be physically valid at
+  // all (the point above the projector or behind it), so a failed fit of all points is also
+  // answered by leaving out each point in turn.
   const char* const no_pose = with_lens ? kNoLensFit : kNoValidPose;
   Fit current = fit(lens, points, inliers, with_lens);
-  if (!current.ok)
-  {
-    return failure(no_pose);
-  }
   const double limit_mm = 1000.0 * options.outlier_distance;
   std::vector<int> outliers;
   std::vector<std::string> robust_warnings;
   while (true)
   {
-    double worst = 0.0;
-    int worst_id = 0;
+    double worst = current.ok ? 0.0 : HUGE_VAL;
+    int worst_id = -1;
     for (int i : inliers)
     {
-      const double r = residualMm(current, points[static_cast<std::size_t>(i)]);
-      if (r > worst)
+      const double r = current.ok ? residualMm(current, points[static_cast<std::size_t>(i)]) : HUGE_VAL;
+      if (r > worst || worst_id < 0)
       {
-        worst = r, worst_id = points[static_cast<std::size_t>(i)].id;
+        worst = std::max(worst, r), worst_id = points[static_cast<std::size_t>(i)].id;
       }
     }
-    if (worst <= limit_mm)
+    if (current.ok && worst <= limit_mm)
     {
       break;
     }
@@ -355,14 +351,23 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
         best_agree = agree, best_cost = cost;
       }
     }
+    if (!current.ok && best_agree.size() < min_points)
+    {
+      return failure(no_pose);
+    }
     if (best_agree.size() < min_points)
     {
-      return failure("the points do not agree with one mount (a residual of " + num(worst) + " mm > outlier_distance " +
-                     num(limit_mm) + " mm) and no " + std::to_string(min_points) +
+      return failure("the points do not agree with one mount (a residual of " +
+                     (std::isfinite(worst) ? num(worst) + " mm" : std::string("infinity: a ray misses its point's plane")) +
+                     " > outlier_distance " + num(limit_mm) + " mm) and no " + std::to_string(min_points) +
                      " or more of them agree once outliers are rejected: re-measure them");
     }
     if (best_agree.size() >= inliers.size())
     {
+      if (!current.ok)
+      {
+        return failure(no_pose);
+      }
       robust_warnings.push_back("point " + std::to_string(worst_id) + " is " + num(worst) +
                                 " mm from the solution, more than outlier_distance, but leaving out no single point "
                                 "explains it better: re-measure it");
@@ -386,8 +391,10 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
 
   MountSolution s;
   s.lens = current.lens;
-  for (const FloorPoint& p : points)
+  // The inliers decide; an outlier may be anywhere (behind the projector, above it, off its plane).
+  for (int i : inliers)
   {
+    const FloorPoint& p = points[static_cast<std::size_t>(i)];
     if (!(depthOf(current.pose, p.world) > 0.0))
     {
       return failure("point " + std::to_string(p.id) + " is behind the projector in the solution: check its x, y, z");
@@ -395,9 +402,9 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   }
   s.parent_T_optical = parentTOptical(current.pose);
   double lowest = HUGE_VAL;
-  for (const FloorPoint& p : points)
+  for (int i : inliers)
   {
-    lowest = std::min(lowest, p.world.z);
+    lowest = std::min(lowest, points[static_cast<std::size_t>(i)].world.z);
   }
   if (!(s.parent_T_optical.translation().z > lowest))
   {
@@ -417,11 +424,14 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     r.id = points[i].id;
     r.px = residualPx(current, points[i]);
     r.mm = residualMm(current, points[i]);
-    if (!std::isfinite(r.mm) || !std::isfinite(r.px))
+    r.outlier = std::find(outliers.begin(), outliers.end(), static_cast<int>(i)) != outliers.end();
+    if (!r.outlier && (!std::isfinite(r.mm) || !std::isfinite(r.px)))
     {
       return failure("crosshair " + std::to_string(r.id) + "'s ray does not reach its point's plane in the solution");
     }
-    r.outlier = std::find(outliers.begin(), outliers.end(), static_cast<int>(i)) != outliers.end();
+    // An outlier's ray may miss its plane (z wrong) or its point lie behind the lens: infinite.
+    r.mm = std::isfinite(r.mm) ? r.mm : HUGE_VAL;
+    r.px = std::isfinite(r.px) ? r.px : HUGE_VAL;
     if (r.outlier)
     {
       s.outliers.push_back(r.id);

@@ -24,13 +24,6 @@ constexpr double kCollinearWarning = 0.15;
 constexpr double kCentredWarning = 0.4;
 constexpr double kCoplanarTolerance = 0.001;
 
-std::string num(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 /// Singular values of the centred rows, descending.
 std::vector<double> centredSingularValues(const cv::Mat& rows)
 {
@@ -52,6 +45,14 @@ std::vector<int> allIndices(std::size_t n)
   return all;
 }
 }  // namespace
+
+std::string num(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 
 cv::Matx33d cameraMatrix(const PinholeModel& lens)
 {

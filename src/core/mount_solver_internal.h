@@ -20,6 +20,8 @@ struct Pose
 };
 
 RigidTransform parentTOptical(const Pose& pose);
+/// A number as the solver's messages print it (shortest round-trip-ish form of an ostream).
+std::string num(double v);
 cv::Matx33d cameraMatrix(const PinholeModel& lens);
 std::vector<cv::Point3d> objectPoints(const std::vector<FloorPoint>& points, const std::vector<int>& which);
 std::vector<cv::Point2d> imagePoints(const std::vector<FloorPoint>& points, const std::vector<int>& which);

@@ -1,5 +1,7 @@
 #include "rviz_projector/core/turn_signal.h"
 
+#include "rviz_projector/core/angle.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,11 +12,6 @@ namespace rviz_projector
 namespace
 {
 constexpr double kPi = 3.14159265358979323846;
-
-double wrap(double angle)
-{
-  return std::remainder(angle, 2.0 * kPi);  // in [-pi, pi]
-}
 
 double cross(const Vec2& a, const Vec2& b)
 {
@@ -72,7 +69,7 @@ TurnDetection detectTurn(const std::vector<Vec2>& points, const std::vector<doub
     {
       continue;
     }
-    sum += wrap(heading - previous);
+    sum += wrapToPi(heading - previous);
     previous = heading;
     if (std::abs(sum) > parameters.angle)
     {

@@ -1,4 +1,5 @@
 #include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/ros_clock.h"
 
 #include <cmath>
 
@@ -77,7 +78,7 @@ void PathCueSource::onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& ms
   summary_ = summarizeGoals(entries_);
   received_ = true;
   news_ = true;
-  const double now = ros::Time::now().toSec();
+  const double now = RosClock::shared().tick().rosNow();  // one clock for every part
   timeline_.update(summary_, now, stillness_.still(now));
 }
 

@@ -22,6 +22,7 @@
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/path_cue_properties.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
+#include "rviz_projector/displays/ros_clock.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -137,8 +138,8 @@ void ProjectedPathDisplay::onInitialize()
 {
   update_nh_.setCallbackQueue(&path_queue_);  // before the base class creates subscriber and filter
   MFDClass::onInitialize();
+  // Drained while enabled (onEnable starts the timer, onDisable stops it).
   connect(&drain_timer_, &QTimer::timeout, this, &ProjectedPathDisplay::drainQueue);
-  drain_timer_.start(kDrainIntervalMs);
   // Sees every message before the tf filter holds it back, to say at once why nothing is drawn.
   sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
@@ -153,6 +154,7 @@ void ProjectedPathDisplay::onInitialize()
 void ProjectedPathDisplay::onEnable()
 {
   MFDClass::onEnable();
+  drain_timer_.start(kDrainIntervalMs);
   scene_node_->setVisible(true);
   for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
   {
@@ -167,6 +169,7 @@ void ProjectedPathDisplay::onEnable()
 void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
+  drain_timer_.stop();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
   for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
   {
@@ -305,6 +308,11 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
 
 void ProjectedPathDisplay::drainQueue()
 {
+  // A backward jump of ROS time (a bag loop): no cue state of before it is kept.
+  if (epoch_.changed(RosClock::shared().tick()))
+  {
+    cue_source_.clear();
+  }
   path_queue_.callAvailable();
   if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
   {

@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projection_gate.h"
 
+#include "rviz_projector/core/fnv_hash.h"
+
 #include <algorithm>
 
 #include <rviz/display.h>
@@ -31,11 +33,7 @@ const rviz::DisplayVisibilityProperty* asEntry(const rviz::Property* p)
 
 void mix(std::uint64_t& hash, std::uint64_t value)
 {
-  for (int i = 0; i < 8; ++i)  // FNV-1a, byte by byte
-  {
-    hash ^= (value >> (8 * i)) & 0xffu;
-    hash *= 1099511628211ull;
-  }
+  fnv1aMix(hash, value);
 }
 
 void signatureOf(const rviz::Property* entries, std::uint64_t& hash)

@@ -22,6 +22,7 @@
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
+#include "rviz_projector/displays/ros_clock.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -34,6 +35,10 @@ constexpr double kFloorClearance = 0.03;
 /// A dense cloud is masked by cells (core snapToCells), at most this many: a 640x480 depth image
 /// would otherwise be 300,000 columns (9 million vertices) a frame.
 constexpr std::size_t kMaxCloudColumns = 20000;
+/// A scan with more returns than this is masked by cells like a cloud (same cell, same cap): a
+/// 200,000-return scan would otherwise be 200,000 columns (6 million vertices) a frame. Real
+/// 2D scanners give at most a few thousand returns, masked return by return.
+constexpr std::size_t kMaxScanColumns = 20000;
 
 /// The cloud's cell side: Margin (so a column widens by at most half a margin), at least 5 cm.
 double cloudCell(double margin)
@@ -94,6 +99,12 @@ ProjectionMaskDisplay::~ProjectionMaskDisplay()
   }
   occluder_mesh_.reset();
   outline_mesh_.reset();
+  // OGRE destroys no child with its parent: rviz destroys the display's scene node, which only
+  // detaches this one, left in the scene manager for ever (issue 23: one leaked per display).
+  if (occluder_node_)
+  {
+    scene_manager_->destroySceneNode(occluder_node_);
+  }
   if (outline_node_)
   {
     scene_manager_->destroySceneNode(outline_node_);  // not under the display's node: ours to destroy
@@ -121,14 +132,15 @@ void ProjectionMaskDisplay::onInitialize()
     main_window_name_ = main_window_->getName();
     main_window_->addListener(this);
   }
+  // Drained while enabled (onEnable starts the timer, onDisable stops it).
   connect(&drain_timer_, &QTimer::timeout, this, &ProjectionMaskDisplay::drainQueue);
-  drain_timer_.start(kDrainIntervalMs);
   setStatus(rviz::StatusProperty::Warn, "Scan", "No scan received yet: nothing is masked");
 }
 
 void ProjectionMaskDisplay::onEnable()
 {
   MFDClass::onEnable();
+  drain_timer_.start(kDrainIntervalMs);
   scene_node_->setVisible(true);
   occluder_mesh_->setShown(true);
   updateOutline();
@@ -139,6 +151,7 @@ void ProjectionMaskDisplay::onEnable()
 void ProjectionMaskDisplay::onDisable()
 {
   MFDClass::onDisable();
+  drain_timer_.stop();  // nothing to drain: no subscription while disabled
   cloud_sub_.shutdown();
   scene_node_->setVisible(false);
   occluder_mesh_->setShown(false);
@@ -209,7 +222,7 @@ bool ProjectionMaskDisplay::unusableStamp(const ros::Time& stamp, const char* st
     return true;
   }
   const double max_age = max_age_property_->getFloat();
-  const double age = (ros::Time::now() - stamp).toSec();
+  const double age = RosClock::shared().tick().rosNow() - stamp.toSec();  // a data age: ROS time
   if (max_age > 0.0 && age > max_age)
   {
     setStatus(rviz::StatusProperty::Warn, status,
@@ -246,7 +259,21 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
   scan.count = msg->ranges.size();
   const MaskInputCount count = scanToFloorPoints(scan, fromOgre(position, orientation), scan_points_);
   scan_stamp_ = msg->header.stamp;
-  if (count.ignored > 0)
+  scan_in_cells_ = scan_points_.size() > kMaxScanColumns;
+  if (scan_in_cells_)
+  {
+    const double cell = cloudCell(margin_property_->getFloat());
+    const bool complete = snapToCells(scan_points_, cell, kMaxCloudColumns);
+    setStatus(complete ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Scan",
+              QString("%1 returns (more than %2): masked by %3 cells of %4 m%5; %6 ignored")
+                  .arg(count.used)
+                  .arg(kMaxScanColumns)
+                  .arg(scan_points_.size())
+                  .arg(cell)
+                  .arg(complete ? QString() : QString(", only the first %1 cells").arg(kMaxCloudColumns))
+                  .arg(count.ignored));
+  }
+  else if (count.ignored > 0)
   {
     setStatus(rviz::StatusProperty::Ok, "Scan",
               QString("%1 returns masked; %2 ignored (NaN/Inf, out of range or no return)").arg(count.used).arg(count.ignored));
@@ -335,6 +362,12 @@ void ProjectionMaskDisplay::updateCloudPoints()
 
 void ProjectionMaskDisplay::drainQueue()
 {
+  // A backward jump of ROS time (a bag loop): no scan or cloud of before it is kept.
+  if (epoch_.changed(RosClock::shared().tick()))
+  {
+    clearMask();
+    ProjectionChangeNotifier::notify();
+  }
   path_queue_.callAvailable();
   tryPendingCloud();
   releaseStale();
@@ -347,7 +380,7 @@ void ProjectionMaskDisplay::releaseStale()
   {
     return;
   }
-  const ros::Time now = ros::Time::now();
+  const ros::Time now(std::max(0.0, RosClock::shared().policy().rosNow()));  // read by drainQueue
   bool changed = false;
   if (!scan_stamp_.isZero() && (now - scan_stamp_).toSec() > max_age)
   {
@@ -405,6 +438,7 @@ void ProjectionMaskDisplay::updateCloudTopic()
 void ProjectionMaskDisplay::clearMask()
 {
   scan_points_.clear();
+  scan_in_cells_ = false;
   cloud_points_.clear();
   scan_stamp_ = ros::Time();
   cloud_stamp_ = ros::Time();
@@ -420,7 +454,8 @@ void ProjectionMaskDisplay::rebuild()
   }
   const double height = height_property_->getFloat();
   const double margin = margin_property_->getFloat();
-  occluders_.build(scan_points_, height, margin);
+  // A scan thinned to cells (more than kMaxScanColumns returns) widens by half a cell, as a cloud.
+  occluders_.build(scan_points_, height, scan_in_cells_ ? margin + 0.5 * cloudCell(margin) : margin);
   // Cloud points stand for their cells: the wider margin covers every point of the cell.
   occluders_.append(cloud_points_, height, margin + 0.5 * cloudCell(margin));
   if (!(height > 0.0 && margin > 0.0))

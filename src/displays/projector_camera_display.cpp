@@ -1,6 +1,8 @@
 #include "rviz_projector/displays/projector_camera_display.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <OgreRenderWindow.h>
 #include <OgreViewport.h>
@@ -34,6 +36,7 @@
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/projector_pose.h"
 #include "rviz_projector/displays/projector_view.h"
+#include "rviz_projector/displays/ros_clock.h"
 
 namespace rviz_projector
 {
@@ -91,6 +94,7 @@ void ProjectorCameraDisplay::onInitialize()
   connect(&ProjectionChangeNotifier::instance(), &ProjectionChangeNotifier::changed, this,
           &ProjectorCameraDisplay::onSceneChanged, Qt::QueuedConnection);
   updateFrameRate();
+  updateProjectorFrame();
   applyProjection();
   showVisibilityStatus();
   showLensStatuses();
@@ -138,6 +142,8 @@ void ProjectorCameraDisplay::reset()
   {
     return;  // not initialised
   }
+  // rviz resets its displays when ROS time jumps backwards (a bag loop): nothing of before is kept.
+  motion_.clear();
   // Raise again, at once, every problem that still holds.
   pose_follower_.forget();
   overlay_->invalidate();
@@ -189,7 +195,7 @@ void ProjectorCameraDisplay::resubscribe()
 {
   unsubscribe();
   lens_source_.forget();
-  onLensChanged();
+  onLensChanged(LensEvent{true, true});
   subscribe();
 }
 
@@ -228,9 +234,17 @@ void ProjectorCameraDisplay::showLensStatuses()
   }
 }
 
-void ProjectorCameraDisplay::onLensChanged()
+void ProjectorCameraDisplay::onLensChanged(const LensEvent& event)
 {
   markChanged();
+  if (event.frame)
+  {
+    updateProjectorFrame();
+  }
+  if (!event.lens)
+  {
+    return;  // a new frame_id only: the same lens, window and statuses
+  }
   showLensStatuses();
   const bool size_changed = hasLens() != (shown_size_.first > 0) ||
                             (hasLens() && (lens().width() != shown_size_.first || lens().height() != shown_size_.second));
@@ -242,12 +256,27 @@ void ProjectorCameraDisplay::onLensChanged()
   }
 }
 
+void ProjectorCameraDisplay::onFramePropertyChanged()
+{
+  markChanged();
+  updateProjectorFrame();
+  context_->queueRender();  // the frustum in the main view
+}
+
+void ProjectorCameraDisplay::updateProjectorFrame()
+{
+  std::string frame = props_.frame->getStdString();  // the Frame, or the CameraInfo's frame_id
+  frame = frame.empty() ? lens_source_.frameId() : frame;
+  if (frame != projector_frame_)
+  {
+    projector_frame_ = std::move(frame);
+    motion_.clear();  // the poses it remembers are of another frame
+  }
+}
+
 void ProjectorCameraDisplay::applyProjection()
 {
   markChanged();
-  motion_.clear();  // the frame may have changed: earlier poses are of another frame
-  projector_frame_ = props_.frame->getStdString();  // the Frame, or the CameraInfo's frame_id
-  projector_frame_ = projector_frame_.empty() ? lens_source_.frameId() : projector_frame_;
   if (!view_)
   {
     return;
@@ -400,7 +429,8 @@ bool ProjectorCameraDisplay::updateCameraPose()
     fixed_frame_std_ = fixed_frame_.toStdString();
     motion_.clear();
   }
-  const double now = ros::Time::now().toSec();
+  const ClockPolicy& clock = RosClock::shared().policy();  // read by onFrameTimer for this frame
+  const double now = clock.rosNow();
   tf2_ros::Buffer& tf = *context_->getTF2BufferPtr();
   const ProjectorPoseFollower::Step step =
       pose_follower_.follow(tf, fixed_frame_std_, projectorFrame(), now, props_.tf_timeout->getFloat());
@@ -414,7 +444,7 @@ bool ProjectorCameraDisplay::updateCameraPose()
     const MotionSettings settings{props_.motion_enabled->getBool(), props_.inputLag(), props_.maxPrediction()};
     MotionReport report;
     view_->setPose(motion_.follow(tf, fixed_frame_std_, pose_follower_.pose(), settings, now, frame_clock_.now(),
-                                  frame_clock_.period(), report));
+                                  frame_clock_.period(), clock.rate(), report));
     showMotion(report);
     showCeiling();
   }
@@ -498,15 +528,31 @@ void ProjectorCameraDisplay::onFrameTimer()
     return;
   }
   // Only this display's own CameraInfo subscription: never rviz's global queue.
-  if (lens_source_.poll())
+  // An unchanged CameraInfo (camera drivers repeat it with every frame) changes nothing.
+  const LensEvent lens_event = lens_source_.poll();
+  if (lens_event.any())
   {
-    onLensChanged();
+    onLensChanged(lens_event);
+  }
+  // One reading of the clock for this frame (ROS time, its rate, a backward jump).
+  const ClockPolicy& clock = RosClock::shared().tick();
+  if (epoch_.changed(clock))
+  {
+    onTimeJumpedBack();
   }
   // Animated drawings (marching arrows, blinking cues) for this frame's time; each bumps the change
   // counter only when its picture changes.
-  ProjectionAnimation::advanceAll(ros::Time::now());
+  ProjectionAnimation::advanceAll(ros::Time(std::max(0.0, clock.rosNow())));
   renderNow();
   frame_clock_.frameDone(frames_rendered_, isEnabled());
+}
+
+void ProjectorCameraDisplay::onTimeJumpedBack()
+{
+  // A bag loop: no pose, prediction or photon-delay measurement of before the jump is kept.
+  motion_.clear();
+  pose_follower_.invalidate();
+  markChanged();
 }
 
 void ProjectorCameraDisplay::onSceneChanged()
@@ -543,7 +589,10 @@ void ProjectorCameraDisplay::renderNow()
   ++frames_rendered_;
   if (publish)
   {
-    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame());
+    // Stamped with the time of the pose it was drawn from (the prediction's target when predicted).
+    const double pose_time = motion_.drawnPoseTime();
+    const ros::Time stamp = pose_time > 0.0 && pose_ok_ ? ros::Time(pose_time) : ros::Time::now();
+    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame(), stamp);
     output_->swap();
   }
   motion_.frameShown(frame_clock_.now(), frame_clock_.period());  // the render delay, measured

@@ -26,6 +26,7 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
   h.has_lens = hasLens();
   h.tf_age_s = hasLens() ? pose_follower_.tfAge() : kNone;  // the pose is looked up only with a lens
   h.camera_info_age_s = lens_source_.secondsSinceInfo();
+  h.camera_info_messages = lens_source_.messagesReceived();
   h.pose_ok = hasLens() && pose_ok_;
   if (output_)
   {

@@ -34,7 +34,7 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
       "Frame", "",
       "tf frame of the projector's optical frame (z forward, x right, y down). Empty: the CameraInfo "
       "header's frame_id.",
-      display, SLOT(applyProjection()), display);
+      display, SLOT(onFramePropertyChanged()), display);
   tf_timeout = new rviz::FloatProperty(
       "TF timeout", 1.0f,
       "Seconds: when the newest tf of the projector's pose in the fixed frame is older than this (its "

@@ -61,7 +61,7 @@ bool ProjectorImagePublisher::due() const
 }
 
 bool ProjectorImagePublisher::publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens,
-                                      const std::string& frame)
+                                      const std::string& frame, const ros::Time& stamp)
 {
   last_ = ros::WallTime::now();
   unsigned ww = 0, wh = 0;
@@ -71,7 +71,7 @@ bool ProjectorImagePublisher::publish(Ogre::RenderTarget* target, const PixelRec
   {
     return false;
   }
-  image_.header.stamp = ros::Time::now();
+  image_.header.stamp = stamp;
   image_.header.frame_id = frame;
   image_.width = static_cast<std::uint32_t>(rect.width);
   image_.height = static_cast<std::uint32_t>(rect.height);

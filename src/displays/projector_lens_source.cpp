@@ -1,6 +1,7 @@
 #include "rviz_projector/displays/projector_lens_source.h"
 
 #include <cmath>
+#include <utility>
 
 #include "rviz_projector/core/lens_view.h"
 #include "rviz_projector/ros/ros_conversions.h"
@@ -38,27 +39,44 @@ void ProjectorLensSource::unsubscribe()
 void ProjectorLensSource::forget()
 {
   last_.reset();
+  messages_ = 0;
+  calibration_ = LensCalibration();
   frame_id_.clear();
   has_lens_ = false;
   check_ = LensCheck();
   narrow_view_.clear();
 }
 
-bool ProjectorLensSource::poll()
+LensEvent ProjectorLensSource::poll()
 {
-  received_ = false;
+  event_ = LensEvent();
   queue_.callAvailable();
-  return received_;
+  return event_;
 }
 
 void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
 {
-  received_ = true;
+  ++messages_;
+  last_received_ = std::chrono::steady_clock::now();  // the CameraInfo age counts every message
+  LensCalibration calibration = toLensCalibration(*msg);
+  const bool first = !last_;
+  const bool lens_changed = first || !sameLens(calibration, calibration_);
+  const bool frame_changed = first || msg->header.frame_id != frame_id_;
   last_ = msg;
-  last_received_ = std::chrono::steady_clock::now();
+  if (!lens_changed && !frame_changed)
+  {
+    return;  // the same CameraInfo again (a new stamp only): nothing to do
+  }
+  event_.lens = event_.lens || lens_changed;
+  event_.frame = event_.frame || frame_changed;
   frame_id_ = msg->header.frame_id;
+  if (!lens_changed)
+  {
+    return;
+  }
+  calibration_ = std::move(calibration);
   PinholeModel lens;
-  check_ = PinholeModel::fromCalibration(toLensCalibration(*msg), lens);
+  check_ = PinholeModel::fromCalibration(calibration_, lens);
   has_lens_ = check_.ok();
   narrow_view_.clear();
   if (has_lens_)

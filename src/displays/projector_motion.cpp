@@ -67,6 +67,7 @@ void ProjectorMotion::clear()
   predictor_.clear();
   photon_.clear();
   last_ = Prediction();
+  drawn_time_ = 0.0;
   lookup_steady_ = -1.0;
   alarm_until_ = -1.0;
 }
@@ -111,7 +112,7 @@ bool ProjectorMotion::predictFromOdometry(tf2_ros::Buffer& tf, const std::string
 
 ProjectorPose ProjectorMotion::follow(tf2_ros::Buffer& tf, const std::string& fixed_frame, const ProjectorPose& tf_pose,
                                       const MotionSettings& settings, double ros_now, double steady_now, double period,
-                                      MotionReport& out)
+                                      double rate, MotionReport& out)
 {
   queue_.callAvailable();  // only this part's own Odometry subscription
   lookup_steady_ = steady_now;
@@ -122,11 +123,14 @@ ProjectorPose ProjectorMotion::follow(tf2_ros::Buffer& tf, const std::string& fi
     last_ = Prediction();
     last_.state = Prediction::Stopped;
     last_.pose = tf_pose.optical_to_fixed;
+    drawn_time_ = 0.0;
     report(settings, odometry_problem, steady_now, out);
     return tf_pose;
   }
   predictor_.add(tf_pose.stamp, tf_pose.optical_to_fixed);
-  last_target_ = ros_now + photon_.expected(period) + settings.input_lag;
+  // Measured in steady seconds, predicted for in ROS seconds (a bag at -r 0.5: half as far).
+  const double ros_rate = std::isfinite(rate) && rate >= 0.0 ? rate : 1.0;
+  last_target_ = ros_now + ros_rate * (photon_.expected(period) + settings.input_lag);
   if (!odom_topic_.empty() && predictFromOdometry(tf, fixed_frame, ros_now, last_target_, settings.max_prediction,
                                                   last_, odometry_problem))
   {
@@ -139,8 +143,10 @@ ProjectorPose ProjectorMotion::follow(tf2_ros::Buffer& tf, const std::string& fi
   report(settings, odometry_problem, steady_now, out);
   if (!settings.enabled || !last_.extrapolated())
   {
+    drawn_time_ = tf_pose.stamp;
     return tf_pose;
   }
+  drawn_time_ = last_target_;
   ProjectorPose predicted = tf_pose;
   predicted.optical_to_fixed = last_.pose;
   const std::array<double, 4> q = last_.pose.quaternion();

@@ -10,6 +10,18 @@
 
 namespace rviz_projector
 {
+void ageAt(ProjectorPose& pose, double now, double timeout)
+{
+  if (isFromTheFuture(pose.stamp, now, timeout))
+  {
+    pose.age = now - pose.stamp;  // negative: ahead of ROS time
+    pose.state = ProjectorPose::Stale;
+    return;
+  }
+  pose.age = dataAge(pose.stamp, now);
+  pose.state = isStale(pose.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
+}
+
 ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame,
                                   double now, double timeout)
 {
@@ -42,8 +54,7 @@ ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_
   }
   // With ros::Time(0), tf stamps the result with the chain's latest common time (0 when all static).
   pose.stamp = t.header.stamp.toSec();
-  pose.age = dataAge(pose.stamp, now);
-  pose.state = isStale(pose.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
+  ageAt(pose, now, timeout);
   pose.qx = q.x;
   pose.qy = q.y;
   pose.qz = q.z;
@@ -66,8 +77,16 @@ std::string describeProblem(const ProjectorPose& pose, const std::string& fixed_
     case ProjectorPose::Stale:
     {
       // Tenths of a second: the text (and the status) changes at most 10 times a second.
-      char text[64];
-      std::snprintf(text, sizeof(text), "%.1f s old (TF timeout %g s)", pose.age, timeout);
+      char text[96];
+      if (pose.age < 0.0)
+      {
+        std::snprintf(text, sizeof(text), "%.1f s ahead of ROS time (TF timeout %g s; did time jump back?)", -pose.age,
+                      timeout);
+      }
+      else
+      {
+        std::snprintf(text, sizeof(text), "%.1f s old (TF timeout %g s)", pose.age, timeout);
+      }
       return "tf of '" + frame + "' in '" + fixed_frame + "' is " + text + ": projector blanked";
     }
     case ProjectorPose::Ok:
@@ -111,8 +130,7 @@ ProjectorPoseFollower::Step ProjectorPoseFollower::follow(tf2_ros::Buffer& tf, c
   if (reusable(tf, fixed_frame, frame))
   {
     // No new tf: the same pose, only older.
-    pose_.age = dataAge(pose_.stamp, now);
-    pose_.state = isStale(pose_.age, timeout) ? ProjectorPose::Stale : ProjectorPose::Ok;
+    ageAt(pose_, now, timeout);
   }
   else
   {

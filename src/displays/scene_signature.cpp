@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "rviz_projector/core/fnv_hash.h"
+
 #include <OgreMovableObject.h>
 #include <OgreSceneNode.h>
 
@@ -11,17 +13,12 @@ namespace
 {
 void mixBytes(std::uint64_t& hash, const void* data, std::size_t size)
 {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i)
-  {
-    hash ^= bytes[i];
-    hash *= 1099511628211ull;
-  }
+  fnv1aMix(hash, data, size);
 }
 
 void mixValue(std::uint64_t& hash, std::uint64_t value)
 {
-  mixBytes(hash, &value, sizeof value);
+  fnv1aMix(hash, value);
 }
 
 void mixFloats(std::uint64_t& hash, const float* values, std::size_t count)

@@ -24,11 +24,14 @@ HostReloadService::HostReloadService(std::function<HostLoadResult()> reload)
 
 HostReloadService::~HostReloadService()
 {
-  server_.shutdown();
+  // The guard goes first: a request waiting for the Qt thread (this one, now in here) gets a
+  // broken promise at once and returns. Shutting the server down first would wait for that very
+  // request, which waits for this thread: a stall of the reply timeout at every exit.
   {
     std::lock_guard<std::mutex> lock(guard_mutex_);
-    guard_.reset();  // a request still waiting gets a broken promise: it replies and returns
+    guard_.reset();
   }
+  server_.shutdown();
   spinner_->stop();
 }
 

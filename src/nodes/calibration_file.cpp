@@ -255,6 +255,11 @@ void addLensWarnings(const sensor_msgs::CameraInfo& info, std::vector<std::strin
 }
 }  // namespace
 
+std::string inDirectory(const std::string& path, const std::string& base)
+{
+  return path.empty() || path[0] == '/' || base.empty() ? path : base + "/" + path;
+}
+
 std::string resolveCalibrationUrl(const std::string& url, std::string& path)
 {
   static const std::string kPackage = "package://";

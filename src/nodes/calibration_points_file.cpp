@@ -295,25 +295,43 @@ std::string calibrationPointsYaml(const CalibrationPoints& points, const std::st
 
 std::string writeTextFile(const std::string& path, const std::string& text)
 {
-  const std::string temporary = path + ".tmp";
+  return writeTextFiles({{path, text}});
+}
+
+std::string writeTextFiles(const std::vector<std::pair<std::string, std::string>>& files)
+{
+  std::vector<std::string> written;  // temporaries, removed again on any failure
+  const auto fail = [&written](const std::string& error) {
+    for (const std::string& temporary : written)
+    {
+      std::remove(temporary.c_str());
+    }
+    return error;
+  };
+  for (const auto& [path, text] : files)
   {
+    const std::string temporary = path + ".tmp";
     std::ofstream file(temporary, std::ios::trunc);
     if (!file)
     {
-      return path + ": cannot be written (no such directory, or no permission)";
+      return fail(path + ": cannot be written (no such directory, or no permission)");
     }
+    written.push_back(temporary);
     file << text;
     file.flush();
     if (!file)
     {
-      std::remove(temporary.c_str());
-      return path + ": writing failed (disk full?)";
+      return fail(path + ": writing failed (disk full?)");
     }
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  for (std::size_t i = 0; i < files.size(); ++i)
   {
-    std::remove(temporary.c_str());
-    return path + ": cannot be written (rename of " + temporary + " failed)";
+    if (std::rename(written[i].c_str(), files[i].first.c_str()) != 0)
+    {
+      // Only a rename in the same directory is left to fail here, and practically never does.
+      written.erase(written.begin(), written.begin() + static_cast<std::ptrdiff_t>(i));
+      return fail(files[i].first + ": cannot be written (rename of " + files[i].first + ".tmp failed)");
+    }
   }
   return "";
 }

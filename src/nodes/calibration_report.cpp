@@ -43,7 +43,9 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
        << "     id        px        mm  outlier\n";
   for (const PointResidual& r : solution.residuals)
   {
-    text << std::setw(7) << r.id << std::setw(10) << fixedDecimals(r.px, 3) << std::setw(10) << fixedDecimals(r.mm, 2) << "  "
+    // An outlier's ray may miss its point's plane (z wrong): no finite residual, "miss".
+    text << std::setw(7) << r.id << std::setw(10) << (std::isfinite(r.px) ? fixedDecimals(r.px, 3) : "miss")
+         << std::setw(10) << (std::isfinite(r.mm) ? fixedDecimals(r.mm, 2) : "miss") << "  "
          << (r.outlier ? "yes" : "no") << "\n";
   }
   text << "RMS over the inliers: " << fixedDecimals(solution.rms_px, 3) << " px, " << fixedDecimals(solution.rms_mm, 2) << " mm\n";
@@ -60,7 +62,14 @@ std::string solutionReport(const std::string& parent_frame, const MountSolution&
       {
         if (r.id == id)
         {
-          text << " " << id << " (" << fixedDecimals(r.px, 1) << " px, " << fixedDecimals(r.mm, 1) << " mm)";
+          if (std::isfinite(r.mm))
+          {
+            text << " " << id << " (" << fixedDecimals(r.px, 1) << " px, " << fixedDecimals(r.mm, 1) << " mm)";
+          }
+          else
+          {
+            text << " " << id << " (its crosshair's ray cannot reach the point's z: check z)";
+          }
         }
       }
     }

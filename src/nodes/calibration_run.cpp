@@ -136,22 +136,18 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
     }
     calibration_text = yaml.str();
   }
+  std::vector<std::pair<std::string, std::string>> files;
   if (!options.output.empty())
   {
-    const std::string error =
-        writeTextFile(options.output, mountFileYaml(points.frame, solution, mountHeader(options, points_name)));
-    if (!error.empty())
-    {
-      return reportError(err, error);
-    }
+    files.emplace_back(options.output, mountFileYaml(points.frame, solution, mountHeader(options, points_name)));
   }
   if (!options.output_calibration.empty())
   {
-    const std::string error = writeTextFile(options.output_calibration, calibration_text);
-    if (!error.empty())
-    {
-      return reportError(err, error);
-    }
+    files.emplace_back(options.output_calibration, calibration_text);
+  }
+  if (const std::string error = writeTextFiles(files); !error.empty())
+  {
+    return reportError(err, error + " (no file written)");
   }
 
   out << solutionReport(points.frame, solution, options.output);

@@ -51,11 +51,7 @@ int main(int argc, char** argv)
     ROS_FATAL("%s: mount_file %s: %s", kName, url.c_str(), url_error.c_str());
     return 1;
   }
-  const std::string base = pnh.param<std::string>("base_directory", "");
-  if (!path.empty() && path[0] != '/' && !base.empty())
-  {
-    path = base + "/" + path;
-  }
+  path = rviz_projector::inDirectory(path, pnh.param<std::string>("base_directory", ""));
 
   rviz_projector::MountFile mount_file;
   const std::string error = rviz_projector::readMountFile(path, mount_file);

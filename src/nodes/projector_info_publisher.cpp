@@ -5,7 +5,9 @@
 // frame and publishes it once, latched. A missing, malformed or unusable file is a ROS_FATAL that
 // names the file and the field, and the node exits with status 1.
 //
-// Parameters: ~calibration_file  path, package://<pkg>/<path> or file:///<path> (required)
+// Parameters: ~calibration_file  path, package://<pkg>/<path> or file:///<path> (required); a
+//                                relative path is taken from ~base_directory
+//             ~base_directory    directory of a relative calibration_file (projector.launch: $PWD)
 //             ~frame_id          optical frame of the projector (projector_optical_frame)
 //             ~topic             topic to publish on (camera_info; remapping camera_info works too)
 // Publishes:  camera_info (or ~topic)  sensor_msgs/CameraInfo, latched
@@ -45,6 +47,13 @@ int main(int argc, char** argv)
     return 1;
   }
 
+  // A relative path is taken from ~base_directory (projector.launch: roslaunch's working directory,
+  // since roslaunch runs its nodes in ~/.ros), as mount_tf_publisher does for mount_file.
+  std::string path;
+  if (rviz_projector::resolveCalibrationUrl(url, path).empty())
+  {
+    url = rviz_projector::inDirectory(path, pnh.param<std::string>("base_directory", ""));
+  }
   rviz_projector::CalibrationFile calibration;
   const std::string error = rviz_projector::loadCalibrationFile(url, calibration);
   if (!error.empty())

@@ -164,6 +164,39 @@ TEST(MountSolver, HundredPointsWithThreeOutliers)
   EXPECT_NEAR(s.residuals[99].mm, 200.0, 0.1);
 }
 
+// Issue 23, defect 4: a point whose z is wrong (typed in cm: 1.6 instead of 0.016, or a plane its
+// crosshair's ray cannot reach from a projector 1.5 m up) is an outlier like a wrong x or y.
+TEST(MountSolver, APointWhoseZTheRayCannotReachIsFlaggedNotFatal)
+{
+  const Mount m{0.1, 0.0, 1.5, 0.0, 60 * kDeg, 0.0};
+  for (std::size_t bad = 0; bad < 9; ++bad)
+  {
+    std::vector<FloorPoint> pts = pattern(kLens, m);
+    ASSERT_EQ(pts.size(), 9u);
+    pts[bad].world.z = 1.6;  // above the projector: no downward ray reaches it
+    const MountSolution s = solveMount(kLens.model(), pts);
+    ASSERT_TRUE(s.ok) << "point " << pts[bad].id << " at z = 1.6: " << s.error;
+    EXPECT_EQ(s.outliers, (std::vector<int>{pts[bad].id})) << "bad point " << pts[bad].id;
+    EXPECT_NEAR(s.mount.z, m.z, 1e-6);
+    EXPECT_NEAR(s.mount.pitch, m.pitch, 1e-7);
+    EXPECT_NEAR(s.mount.x, m.x, 1e-6);
+    EXPECT_TRUE(s.residuals[bad].outlier);
+    EXPECT_FALSE(std::isfinite(s.residuals[bad].mm)) << "a ray that cannot reach z = 1.6 has no floor residual";
+    EXPECT_LT(s.rms_mm, 1e-3);
+  }
+}
+
+TEST(MountSolver, APointTypedInCentimetresInZIsFlagged)
+{
+  const Mount m{0.1, 0.0, 1.5, 0.0, 60 * kDeg, 0.0};
+  std::vector<FloorPoint> pts = pattern(kLens, m);
+  pts[4].world.z = 0.8;  // reachable, but far off where its ray meets that plane
+  const MountSolution s = solveMount(kLens.model(), pts);
+  ASSERT_TRUE(s.ok) << s.error;
+  EXPECT_EQ(s.outliers, (std::vector<int>{pts[4].id}));
+  EXPECT_NEAR(s.mount.z, m.z, 1e-6);
+}
+
 TEST(MountSolver, ExpectedErrorAtTheCornersAndTwoMetresAheadFollowsTheTapeError)
 {
   const std::vector<FloorPoint> pts = pattern(kLens, kMount);
@@ -261,8 +294,13 @@ TEST(MountSolver, BadInputIsRefusedWithTheReason)
   // The floor points mirrored (y sign flipped): exactly what a projector below the floor, turned
   // 180 degrees about x, would see; no pose has the projector above them.
   expectRefused(lens, with([&](auto& p) { for (FloorPoint& q : p) q.world.y = -q.world.y; }), "above the points");
-  // A point behind the projector (x sign wrong).
-  expectRefused(lens, with([&](auto& p) { p[4].world.x = -p[4].world.x - 1.0; }), "in front of");
+  // A point behind the projector (x sign wrong) is an outlier like any other wrong x (issue 23):
+  // solved without it, and named.
+  {
+    const MountSolution behind = solveMount(lens, with([&](auto& p) { p[4].world.x = -p[4].world.x - 1.0; }));
+    EXPECT_TRUE(behind.ok) << behind.error;
+    EXPECT_EQ(behind.outliers, (std::vector<int>{good[4].id}));
+  }
   // Points that agree with no mount: ids mixed up (the pattern measured upside down).
   expectRefused(lens, with([&](auto& p) { std::swap(p[0].world, p[8].world); std::swap(p[2].world, p[6].world);
                                           std::swap(p[1].world, p[7].world); }),

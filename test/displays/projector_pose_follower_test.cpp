@@ -113,3 +113,28 @@ TEST(ProjectorPoseFollower, AnotherBufferIsLookedUpAfresh)
   EXPECT_TRUE(follower.follow(second, "map", "projector", 100.0, 1.0).ok);
   EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 2.0);
 }
+
+TEST(ProjectorPoseFollower, TfFromBeforeABackwardJumpIsNeverFreshAndInvalidateDropsTheLookup)
+{
+  // Issue 23, defect 2: `rosbag play -l` makes ROS time jump back at each loop. tf stamped before
+  // the jump lies in the future of the new time: it used to count as 0 s old, so TF timeout never
+  // blanked it, and the cached lookup was kept.
+  tf2_ros::Buffer tf(ros::Duration(300.0), false);
+  tf.setTransform(transform("projector", 200.0, 1.0), "test", false);
+  ProjectorPoseFollower follower;
+  ASSERT_TRUE(follower.follow(tf, "map", "projector", 200.1, 1.0).ok);
+  // The loop: ROS time is 100 s again; the buffer still holds the pose of 200 s.
+  ProjectorPoseFollower::Step step = follower.follow(tf, "map", "projector", 100.0, 1.0);
+  EXPECT_FALSE(step.ok) << "a pose 100 s in the future of ROS time was shown as fresh";
+  EXPECT_NE(step.problem.find("ahead of ROS time"), std::string::npos) << step.problem;
+  // Skew within the TF timeout is tolerated.
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 199.5, 1.0).ok);
+  // rviz clears its buffer at the jump; the follower drops its cached lookup when told to.
+  tf.clear();
+  EXPECT_TRUE(follower.follow(tf, "map", "projector", 199.6, 1.0).ok) << "the cached lookup (no new tf signal)";
+  follower.invalidate();
+  EXPECT_FALSE(follower.follow(tf, "map", "projector", 100.0, 1.0).ok) << "the pre-jump pose was kept";
+  tf.setTransform(transform("projector", 100.05, 2.0), "test", false);
+  ASSERT_TRUE(follower.follow(tf, "map", "projector", 100.1, 1.0).ok);
+  EXPECT_DOUBLE_EQ(follower.pose().optical_to_fixed.translation().x, 2.0);
+}

@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <fstream>
 #include <vector>
 
 #include "child_process.h"
@@ -301,6 +302,31 @@ TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
   EXPECT_NEAR(817.0, fitted.cameraInfo().K[5], 0.1) << "K as well as P";
   const YAML::Node mount = YAML::LoadFile(dir.file("mount.yaml"));
   EXPECT_NEAR(kMount.pitch, mount["pitch"].as<double>(), 1e-5);
+}
+
+TEST(CalibrateProjectorSolve, OutputFilesAreWrittenAllOrNothing)
+{
+  // Issue 23, defect 5: mount.yaml used to be written before the calibration file failed.
+  Dir dir;
+  std::vector<TestPoint> points = floorPoints(kMount);
+  image_geometry::PinholeCameraModel lens;
+  ASSERT_TRUE(rviz_projector_test::lensFromFile(kPa503w, lens));
+  const std::vector<TestPoint> boxes = {{10, 384, 240, {0, 0, 0.4}}, {11, 896, 560, {0, 0, 0.3}},
+                                        {12, 640, 160, {0, 0, 0.5}}};
+  for (TestPoint p : boxes)
+  {
+    ASSERT_TRUE(rviz_projector_test::pixelOnPlane(lens, rviz_projector_test::opticalPoseByHand(kMount), p.u, p.v,
+                                                  p.world[2], p.world));
+    points.push_back(p);
+  }
+  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link", points));
+  const auto result = calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--fit-intrinsics",
+                                 "--tape-error", "1", "--output", dir.file("mount.yaml"), "--output-calibration",
+                                 dir.file("no_such_directory/cal.yaml")});
+  EXPECT_NE(0, result.status) << result.out << result.err;
+  EXPECT_NE(std::string::npos, result.err.find("no_such_directory/cal.yaml")) << result.err;
+  EXPECT_FALSE(std::ifstream(dir.file("mount.yaml")).good()) << "mount.yaml written although the set failed";
+  EXPECT_FALSE(std::ifstream(dir.file("mount.yaml.tmp")).good()) << "a temporary file was left behind";
 }
 
 TEST(CalibrateProjectorSolve, FitIntrinsicsFromFloorPointsAloneIsRefused)

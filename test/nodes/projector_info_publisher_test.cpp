@@ -115,6 +115,17 @@ TEST(ProjectorInfoPublisher, TopicParameterAndPackageUrl)
   expectArray({1900, 0, 640, 0, 0, 1900, 817, 0, 0, 0, 1, 0}, info->P.data(), "P");
 }
 
+TEST(ProjectorInfoPublisher, RelativePathIsTakenFromTheBaseDirectory)
+{
+  // Issue 23: `projector.launch calibration_file:=CAL.yaml` failed, roslaunch running the node in
+  // ~/.ros; the launch file now passes its working directory, as it does for mount_file.
+  const sensor_msgs::CameraInfo::ConstPtr info =
+      ros::topic::waitForMessage<sensor_msgs::CameraInfo>("/test_projector/relative_info", ros::Duration(15.0));
+  ASSERT_TRUE(info != nullptr) << "no CameraInfo on /test_projector/relative_info";
+  EXPECT_EQ("relative_optical_frame", info->header.frame_id);
+  expectArray({1500, 0, 639.5, 0, 1500, 399.5, 0, 0, 1}, info->K.data(), "K");
+}
+
 // --- bad input: exit status 1, the file and the problem named -------------------------------------
 
 TEST(ProjectorInfoPublisher, MissingFile)

@@ -18,12 +18,14 @@
 #include <rviz/config.h>
 #include <rviz/properties/property.h>
 #include <rviz/visualization_manager.h>
+#include <sensor_msgs/Image.h>
 #include <tf2/LinearMath/Transform.h>
 #include <tf2_ros/buffer.h>
 
 #include "projector_test_fixture.h"
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output_window.h"
+#include "rviz_projector/displays/ros_clock.h"
 
 using namespace rviz_projector_test;
 using rviz_projector::Vec2;
@@ -64,11 +66,20 @@ Mount opticalInMap(const tf2::Transform& base)
 class MotionCompensationTest : public ProjectorCameraTest
 {
 protected:
+  void TearDown() override
+  {
+    rviz_projector::RosClock::shared().policy().fixRate(std::nan(""));
+    ProjectorCameraTest::TearDown();
+  }
+
   void SetUp() override
   {
     ProjectorCameraTest::SetUp();
     start_ = ros::Time(std::floor(ros::WallTime::now().toSec()));
     ros::Time::setNow(start_);  // simulated from here on
+    // The test steps ROS time by hand: its rate against wall time means nothing. ROS time runs at
+    // wall rate here unless a test says otherwise (the ClockPolicy the displays share).
+    rviz_projector::RosClock::shared().policy().fixRate(1.0);
     static_tf_->sendTransform(stampedTransform("base_link", kOpticalFrame, kDemoMount.position.x,
                                                kDemoMount.position.y, kDemoMount.position.z,
                                                {kDemoMount.qx, kDemoMount.qy, kDemoMount.qz, kDemoMount.qw}));
@@ -108,13 +119,27 @@ protected:
     return waitFor([&] { return std::abs(projector_->motion().lastPrediction().newest - stamp) < 1e-6; });
   }
 
-  /// Drives from 0 to kDrive seconds.
-  void drive()
+  /// Drives from 0 to kDrive seconds; with `info_every_step`, the CameraInfo is republished
+  /// unchanged (a new stamp) before each tf sample, as camera drivers do with every frame.
+  void drive(bool info_every_step = false)
   {
     for (double t = 0.0; t <= kDrive + 1e-9; t += kTfPeriod)
     {
+      if (info_every_step)
+      {
+        republishInfo(info_);
+      }
       ASSERT_TRUE(step(t)) << "the display never looked up the tf sample at " << t << " s";
     }
+  }
+
+  /// Publishes `info` stamped now and waits until the display has handled it.
+  void republishInfo(sensor_msgs::CameraInfo info)
+  {
+    const std::uint64_t handled = projector_->cameraInfoMessages();
+    info.header.stamp = ros::Time::now();
+    info_pub_.publish(info);
+    ASSERT_TRUE(waitFor([&] { return projector_->cameraInfoMessages() > handled; }));
   }
 
   /// The error (window pixels) of the drawn target against the target drawn from the optical pose
@@ -326,3 +351,120 @@ TEST_F(MotionCompensationTest, NonsensePropertiesAreClampedAndSaved)
   EXPECT_EQ(group.mapGetChild("Enabled").getValue().toBool(), true);
 }
 }  // namespace
+
+TEST_F(MotionCompensationTest, CameraInfoRepeatedWithEveryFrameKeepsThePrediction)
+{
+  // Issue 23, defect 1: each repeated CameraInfo used to clear the motion history, so the
+  // prediction never got past Collecting and the projector drew the newest (late) tf pose.
+  drive(true);
+  const rviz_projector::Prediction& p = projector_->motion().lastPrediction();
+  ASSERT_EQ(p.state, rviz_projector::Prediction::Predicted) << rviz_projector::describePrediction(p);
+  EXPECT_LE(drawnError([&](double t) { return onArc(t); }), kTolerance)
+      << "the target is not where the pose at t_photon puts it";
+}
+
+TEST_F(MotionCompensationTest, ANewProjectorFrameRestartsTheMotionHistoryAndANewLensDoesNot)
+{
+  drive();
+  ASSERT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted);
+  // A new lens (same frame): the history stays.
+  sensor_msgs::CameraInfo zoomed = info_;
+  zoomed.K[0] = zoomed.P[0] = info_.K[0] * 1.05;
+  republishInfo(zoomed);
+  ASSERT_TRUE(step(kDrive + kTfPeriod));
+  EXPECT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted)
+      << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+  // A new frame_id (mounted identically): poses of the old frame are not of this one.
+  static_tf_->sendTransform(stampedTransform("base_link", "test_projector_optical_2", kDemoMount.position.x,
+                                             kDemoMount.position.y, kDemoMount.position.z,
+                                             {kDemoMount.qx, kDemoMount.qy, kDemoMount.qz, kDemoMount.qw}));
+  sensor_msgs::CameraInfo moved = zoomed;
+  moved.header.frame_id = "test_projector_optical_2";
+  republishInfo(moved);
+  ASSERT_TRUE(waitFor([&] {
+    return projector_->motion().lastPrediction().state == rviz_projector::Prediction::Collecting;
+  })) << "the history of the old frame was kept: "
+      << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+}
+
+TEST_F(MotionCompensationTest, PhotonDelayAndInputLagAreConvertedIntoRosSeconds)
+{
+  // Issue 23, defect 2: the render delay, hold and input lag are steady (wall) seconds; under
+  // `rosbag play -r 0.5` they are half as many ROS seconds. At rate 0.5 the display predicts
+  // ros_now + 0.5 * (photon delay + input lag), not ros_now + photon delay + input lag.
+  rviz_projector::RosClock::shared().policy().fixRate(0.5);
+  drive();
+  const rviz_projector::Prediction& p = projector_->motion().lastPrediction();
+  ASSERT_EQ(p.state, rviz_projector::Prediction::Predicted) << rviz_projector::describePrediction(p);
+  const double lookup = p.newest + 0.005;  // step() sets the clock 5 ms after the sample
+  const double photon = projector_->health().photon_delay_ms * 1e-3;
+  const double ahead = projector_->motion().lastTarget() - lookup;
+  std::printf("  photon delay %.1f ms, input lag %.0f ms, predicted %.1f ms ahead at rate 0.5\n", photon * 1e3,
+              kLag * 1e3, ahead * 1e3);
+  EXPECT_NEAR(ahead, 0.5 * (photon + kLag), 0.01);
+  EXPECT_LT(ahead, 0.75 * (photon + kLag)) << "the wall-time delay was added to ROS time unconverted";
+}
+
+TEST_F(MotionCompensationTest, ABackwardJumpOfRosTimeForgetsThePredictionAndThePose)
+{
+  // Issue 23, defect 2: `rosbag play -l` makes ROS time jump back at every loop. Nothing of before
+  // the jump is kept: the motion history restarts, and the pre-jump pose (now "from the future")
+  // is not shown as fresh.
+  drive();
+  ASSERT_EQ(projector_->motion().lastPrediction().state, rviz_projector::Prediction::Predicted);
+  ros::Time::setNow(start_ - ros::Duration(30.0));  // the loop
+  ASSERT_TRUE(waitFor([&] { return projector_->motion().lastPrediction().state == rviz_projector::Prediction::NoPose; }))
+      << "the prediction of before the jump was kept: "
+      << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+  ASSERT_TRUE(waitFor([&] { return !projector_->health().pose_ok; }))
+      << "a pose stamped 30 s in the future of ROS time was shown";
+  // Ahead of ROS time (the buffer still holds it) or gone (rviz's own update cleared its buffer).
+  const std::string why = projector_->health().blank_reason;
+  EXPECT_TRUE(why.find("ahead of ROS time") != std::string::npos || why.find("No transform") != std::string::npos)
+      << why;
+  // The bag's first tf after the loop: drawn again at once, history from scratch.
+  const ros::Time loop_start = start_ - ros::Duration(30.0);
+  geometry_msgs::TransformStamped s = stampedTransform("map", "base_link", 0.0, 0.0, 0.0, {0.0, 0.0, 0.0, 1.0});
+  s.header.stamp = loop_start;
+  ros::Time::setNow(loop_start + ros::Duration(0.005));
+  rviz_->manager()->getTF2BufferPtr()->clear();  // as rviz does at a jump
+  rviz_->manager()->getTF2BufferPtr()->setTransform(s, "motion_compensation_test");
+  static_tf_->sendTransform(stampedTransform("base_link", kOpticalFrame, kDemoMount.position.x, kDemoMount.position.y,
+                                             kDemoMount.position.z,
+                                             {kDemoMount.qx, kDemoMount.qy, kDemoMount.qz, kDemoMount.qw}));
+  EXPECT_TRUE(waitFor([&] { return projector_->health().pose_ok; })) << projector_->health().blank_reason;
+  EXPECT_TRUE(waitFor([&] {
+    return projector_->motion().lastPrediction().state == rviz_projector::Prediction::Collecting;
+  })) << rviz_projector::describePrediction(projector_->motion().lastPrediction());
+}
+
+TEST_F(MotionCompensationTest, ImageOutputIsStampedWithThePoseItWasDrawnFor)
+{
+  // Issue 23, defect 2: the published Image carries the time of the pose it shows (the prediction
+  // target with compensation on; the tf pose's stamp with it off), not "now".
+  sensor_msgs::Image::ConstPtr image;
+  ros::Subscriber sub = nh_.subscribe<sensor_msgs::Image>("/test/rendered/image", 10,
+                                                          [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
+  projector_->subProp("Image output")->subProp("Image topic")->setValue("/test/rendered/image");
+  projector_->subProp("Image output")->subProp("Image rate")->setValue(100.0);
+  projector_->subProp("Image output")->setValue(true);
+  ASSERT_TRUE(waitFor([&] { return sub.getNumPublishers() > 0; }));
+  drive();
+  // The clock stands still now: every image from here on is of the last prediction.
+  image.reset();
+  ASSERT_TRUE(waitFor([&] { return bool(image); }));
+  image.reset();
+  ASSERT_TRUE(waitFor([&] { return bool(image); }));
+  const double target = projector_->motion().lastTarget();
+  const double now = ros::Time::now().toSec();
+  EXPECT_NEAR(image->header.stamp.toSec(), target, 1e-6) << "stamped " << image->header.stamp.toSec() - now
+                                                         << " s from now, the prediction was for " << target - now;
+  EXPECT_GT(target - now, kLag * 0.9) << "the test cannot tell the prediction's time from now";
+  motion_->subProp("Enabled")->setValue(false);
+  ASSERT_TRUE(step(kDrive + kTfPeriod));
+  const double newest = projector_->motion().lastPrediction().newest;
+  image.reset();
+  ASSERT_TRUE(waitFor([&] { return image && std::abs(image->header.stamp.toSec() - newest) < 1e-6; }))
+      << "with compensation off the image is stamped with the tf pose's time " << newest << ", got "
+      << (image ? image->header.stamp.toSec() : 0.0);
+}

@@ -510,6 +510,43 @@ TEST_F(ProjectorSceneTest, RendersOnChangeWithoutRvizUpdatesAndNotOtherwise)
   rviz_->manager()->startUpdate();
 }
 
+TEST_F(ProjectorSceneTest, RepeatedUnchangedCameraInfoRendersNothing)
+{
+  // Issue 23, defect 1: camera drivers and `rostopic pub -r 30` publish the same CameraInfo with
+  // every frame, each with a new stamp. Such a message is no event: no frame is rendered for it.
+  addPath("/test/plan", {{0.5, 0.0}, {2.0, 0.0}});
+  rviz_->manager()->stopUpdate();  // only the projector's own timer renders
+  rviz_projector::ProjectorOutputWindow* window = projector_->outputWindow();
+  ASSERT_TRUE(pumpQtUntil([&] { return countColour(peek(window), kArrowMagenta) > 100; }));
+  ASSERT_TRUE(pumpQtUntil([&] {
+    const std::uint64_t before = projector_->framesRendered();
+    pumpQt(0.2);
+    return projector_->framesRendered() == before;
+  })) << "the projector never settled";
+
+  const std::uint64_t rendered = projector_->framesRendered();
+  const std::uint64_t handled = projector_->cameraInfoMessages();
+  sensor_msgs::CameraInfo repeat = info_;
+  for (int i = 1; i <= 10; ++i)
+  {
+    repeat.header.stamp = ros::Time::now();
+    info_pub_.publish(repeat);
+    // The display handles a message in its frame timer, right before it decides to render.
+    ASSERT_TRUE(pumpQtUntil([&] { return projector_->cameraInfoMessages() >= handled + i; }))
+        << "CameraInfo " << i << " never reached the display";
+  }
+  EXPECT_EQ(projector_->framesRendered(), rendered) << "an unchanged CameraInfo rendered a frame";
+  EXPECT_EQ(projector_->health().camera_info_messages, handled + 10);
+
+  // Positive control: a changed lens renders.
+  repeat.K[0] = repeat.P[0] = info_.K[0] * 1.1;
+  info_pub_.publish(repeat);
+  EXPECT_TRUE(pumpQtUntil([&] { return projector_->framesRendered() > rendered; }))
+      << "a changed lens was not rendered";
+  EXPECT_NEAR(projector_->lens().fx(), info_.K[0] * 1.1, 1e-9);
+  rviz_->manager()->startUpdate();
+}
+
 TEST_F(ProjectorSceneTest, RenderingNeverRunsCallbacksOfRvizsGlobalQueue)
 {
   // Issue 11, defect 2: the display never spins ROS's global callback queue. rviz owns it, and one

@@ -188,15 +188,16 @@ std::string OgreCounts::describe() const
 
 namespace
 {
-std::size_t countNodes(Ogre::Node* node)
+/// Every scene node the scene manager owns: its own list, not a walk from the root (a node
+/// detached from its destroyed parent is not under the root, but is still there: a leak). The
+/// list is protected; a pointer to the member taken through a derived class reads it.
+struct SceneNodeList : Ogre::SceneManager
 {
-  std::size_t n = 1;
-  for (Ogre::Node* child : node->getChildren())
+  static std::size_t count(const Ogre::SceneManager& manager)
   {
-    n += countNodes(child);
+    return (manager.*(&SceneNodeList::mSceneNodes)).size();
   }
-  return n;
-}
+};
 }  // namespace
 
 OgreCounts ogreCounts(Ogre::SceneManager* scene_manager)
@@ -204,7 +205,7 @@ OgreCounts ogreCounts(Ogre::SceneManager* scene_manager)
   OgreCounts c;
   c.manual_objects = scene_manager->getMovableObjects("ManualObject").size();
   c.cameras = scene_manager->getCameras().size();
-  c.scene_nodes = countNodes(scene_manager->getRootSceneNode());
+  c.scene_nodes = SceneNodeList::count(*scene_manager);
   auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
   while (targets.hasMoreElements())
   {

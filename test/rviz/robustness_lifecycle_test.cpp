@@ -19,6 +19,7 @@ TEST_F(LifecycleRobustness, HundredCyclesOfEachDisplayLeaveNothingBehind)
   {
     rviz::Display* path = rviz_->addDisplay("rviz_projector/ProjectedPath", "cycle path");
     path->subProp("Topic")->setValue(kPathTopic);  // the latched path arrives while it cycles
+    rviz::Display* mask = rviz_->addDisplay("rviz_projector/ProjectionMask", "cycle mask");
     rviz::Display* camera = rviz_->addDisplay("rviz_projector/ProjectorCamera", "cycle projector");
     camera->subProp("Topic")->setValue(kInfoTopic);
     auto* projector = dynamic_cast<ProjectorCameraDisplay*>(camera);
@@ -27,12 +28,15 @@ TEST_F(LifecycleRobustness, HundredCyclesOfEachDisplayLeaveNothingBehind)
     // The event loop runs between the steps (pacing of the cycles; they wait for nothing).
     spinFor(0.01);
     path->setEnabled(false);
+    mask->setEnabled(false);
     camera->setEnabled(false);
     spinFor(0.005);
     path->setEnabled(true);
+    mask->setEnabled(true);
     camera->setEnabled(true);
     spinFor(0.01);
     delete path;
+    delete mask;
     delete camera;
     QApplication::processEvents();
   }

@@ -23,4 +23,10 @@ struct LensCalibration
   std::uint32_t roi_width = 0;
   std::uint32_t roi_height = 0;
 };
+
+/// Whether two calibrations describe the same lens: every field above, value for value (a
+/// CameraInfo republished with every camera frame is the same lens; only a changed value is news).
+/// NaN never equals itself, so a calibration holding NaN is "changed" each time - and refused by
+/// PinholeModel::fromCalibration anyway.
+bool sameLens(const LensCalibration& a, const LensCalibration& b);
 }  // namespace rviz_projector

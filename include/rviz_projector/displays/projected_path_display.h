@@ -2,6 +2,8 @@
 // floor for a nav_msgs/Path. A thin adapter: PathSpacer places the arrows, FloorMesh draws them.
 #pragma once
 
+#include "rviz_projector/core/clock_policy.h"
+
 #ifndef Q_MOC_RUN
 #include <chrono>
 #include <memory>
@@ -125,6 +127,7 @@ private:
   // its timer: a new plan reaches the projector without waiting for rviz's next main-view frame,
   // and nobody spins rviz's global queue from inside a display.
   QTimer drain_timer_;
+  EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time forgets the old state
   PathSpacer spacer_;
   const SpacedPath* spaced_;
   SpacedPath empty_;

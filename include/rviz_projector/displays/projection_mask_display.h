@@ -5,6 +5,8 @@
 // MainViewExclusion keeps it out of rviz's main view.
 #pragma once
 
+#include "rviz_projector/core/clock_policy.h"
+
 #ifndef Q_MOC_RUN
 #include <memory>
 #include <string>
@@ -94,8 +96,11 @@ private:
   rviz::RosTopicProperty* cloud_topic_property_;
 
   QTimer drain_timer_;
+
+  EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time forgets the old state
   ros::Subscriber cloud_sub_;
   std::vector<Vec2> scan_points_;
+  bool scan_in_cells_ = false;  ///< scan_points_ are cell centres (a scan of more than kMaxScanColumns)
   std::vector<Vec2> cloud_points_;
   std::vector<Vec3> cloud_scratch_;   // the cloud being read (its own frame, then the fixed frame)
   std::vector<Vec3> cloud_fixed_;     // the last cloud used, in the fixed frame (Height may change)

@@ -33,6 +33,7 @@
 #include <rviz/display.h>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "rviz_projector/core/clock_policy.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/screen_choice.h"
 #include "rviz_projector/displays/projector_camera_health.h"
@@ -85,6 +86,8 @@ public:
   std::uint64_t framesSkipped() const { return frames_skipped_; }
   /// Frames rendered into the output window so far.
   std::uint64_t framesRendered() const { return frames_rendered_; }
+  /// CameraInfo messages handled since the topic was (re)subscribed, changed or not.
+  std::uint64_t cameraInfoMessages() const { return lens_source_.messagesReceived(); }
   /// The output window (nullptr while none exists).
   ProjectorOutputWindow* outputWindow() const;
   /// The lens in use; valid only when hasLens().
@@ -117,7 +120,12 @@ private Q_SLOTS:
   void resubscribe();
   /// Shows the output window as the properties ask (when enabled): "Output" status.
   void updateOutput();
+  /// Lens, clipping and background into the projector view (no other effect).
   void applyProjection();
+  /// The Frame property changed.
+  void onFramePropertyChanged();
+  /// ROS time jumped backwards (a bag loop): forget poses and predictions of before.
+  void onTimeJumpedBack();
   /// Max lit height changed: the projector view's clipping plane.
   void updateMaxLitHeight();
   void updateFrameRate();
@@ -131,8 +139,12 @@ private Q_SLOTS:
 private:
   void subscribe();
   void unsubscribe();
-  /// A CameraInfo arrived (or was forgotten): statuses, projection, window size.
-  void onLensChanged();
+  /// A CameraInfo changed the lens and/or the frame (or was forgotten): statuses, projection,
+  /// window size; a new projector frame resets the motion history, a new lens does not.
+  void onLensChanged(const LensEvent& event);
+  /// projectorFrame() anew from the Frame property and the CameraInfo; a new frame clears the
+  /// motion history (earlier poses are of another frame).
+  void updateProjectorFrame();
   /// The CameraInfo, Distortion and Field of view statuses, as the lens source says.
   void showLensStatuses();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
@@ -176,6 +188,7 @@ private:
   bool pose_ok_ = false;
   ProjectorPoseFollower pose_follower_;
   ProjectorMotion motion_;
+  EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time resets the followers
   std::string projector_frame_;  ///< projectorFrame(), kept so that no frame builds it
   QString fixed_frame_shown_;    ///< the fixed frame fixed_frame_std_ was made from
   std::string fixed_frame_std_;

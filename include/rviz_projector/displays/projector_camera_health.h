@@ -13,6 +13,7 @@ struct ProjectorCameraHealth
   double seconds_since_last_frame = -1.0;  ///< since the last rendered frame; < 0 when none yet
   double tf_age_s = 0.0;                  ///< age of the pose's tf (NaN when no pose; 0 for a static chain)
   double camera_info_age_s = 0.0;         ///< since the last CameraInfo arrived (NaN when none received)
+  std::uint64_t camera_info_messages = 0; ///< CameraInfo messages handled (repeats of the same lens included)
   bool has_lens = false;                  ///< a usable lens from the CameraInfo
   bool pose_ok = false;                   ///< a fresh pose: the scene is drawn from it
   bool blanked = true;                    ///< the projector shows no scene (background only, or nothing)

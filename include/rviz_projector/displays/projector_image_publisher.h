@@ -38,7 +38,10 @@ public:
   bool due() const;
   /// Reads the back buffer of `target` (rendered, not yet swapped), crops `rect` and publishes it
   /// with its CameraInfo. Returns false when nothing could be read.
-  bool publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens, const std::string& frame);
+  /// `stamp`: the time of the pose the image was rendered for (the prediction's target time when
+  /// motion compensation predicted, else the pose's tf stamp; ROS now for a static pose).
+  bool publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens, const std::string& frame,
+               const ros::Time& stamp);
 
 private:
   ros::Publisher image_pub_;

@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 
+#include "rviz_projector/core/lens_calibration.h"
 #include "rviz_projector/core/lens_check.h"
 #include "rviz_projector/core/pinhole_model.h"
 
@@ -32,6 +33,16 @@ struct LensStatuses
   QString field_of_view;  ///< "Field of view" (warn)
 };
 
+/// What the CameraInfo messages handled by one poll() changed. Camera drivers and
+/// camera_info_manager-style nodes publish the same CameraInfo with every frame: such a message
+/// changes nothing (both false), so nothing is reset, rendered or repainted for it.
+struct LensEvent
+{
+  bool lens = false;   ///< the lens values (size, K, P, D, binning, ROI, model) or their usability changed
+  bool frame = false;  ///< the header's frame_id changed (the projector's pose is of another frame)
+  bool any() const { return lens || frame; }
+};
+
 class ProjectorLensSource
 {
 public:
@@ -45,8 +56,10 @@ public:
   void unsubscribe();
   /// Forgets the last CameraInfo and its lens (the topic changed).
   void forget();
-  /// Handles the CameraInfo messages that arrived since the last call; true when one did.
-  bool poll();
+  /// Handles the CameraInfo messages that arrived since the last call: what they changed.
+  LensEvent poll();
+  /// CameraInfo messages received since subscribe()/forget(), changed or not (tests, health).
+  std::uint64_t messagesReceived() const { return messages_; }
 
   bool hasInfo() const { return static_cast<bool>(last_); }
   /// A usable lens from the last CameraInfo.
@@ -68,7 +81,9 @@ private:
   ros::Subscriber sub_;
   sensor_msgs::CameraInfo::ConstPtr last_;
   std::chrono::steady_clock::time_point last_received_;  ///< when last_ arrived
-  bool received_ = false;
+  LensEvent event_;                ///< what the messages handled in this poll() changed
+  std::uint64_t messages_ = 0;
+  LensCalibration calibration_;    ///< the values of last_ (compared with each new message)
   std::string frame_id_;
   PinholeModel lens_;
   bool has_lens_ = false;

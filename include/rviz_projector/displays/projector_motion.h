@@ -63,8 +63,10 @@ public:
   /// The pose to draw a frame from. `tf_pose` is the projector's pose from tf (state Ok);
   /// `ros_now` the ROS time and `steady_now` a monotonic time (s) at the lookup; `period` the
   /// frame period the projector aims at. Fills `report` with what changed for the display.
+  /// `rate` is ROS seconds per steady second (ClockPolicy::rate()): the photon delay and the input
+  /// lag are measured in steady seconds and predicted for in ROS seconds.
   ProjectorPose follow(tf2_ros::Buffer& tf, const std::string& fixed_frame, const ProjectorPose& tf_pose,
-                       const MotionSettings& settings, double ros_now, double steady_now, double period,
+                       const MotionSettings& settings, double ros_now, double steady_now, double period, double rate,
                        MotionReport& report);
   /// The frame drawn from the last follow() was handed to the screen at `steady_shown`.
   void frameShown(double steady_shown, double period);
@@ -73,6 +75,9 @@ public:
   const Prediction& lastPrediction() const { return last_; }
   /// The ROS time the last pose was predicted for (t_photon).
   double lastTarget() const { return last_target_; }
+  /// The ROS time of the pose the last frame was drawn from: lastTarget() when it predicted, the
+  /// newest tf pose's stamp otherwise (0 for a static pose).
+  double drawnPoseTime() const { return drawn_time_; }
   /// Expected seconds from lookup to the middle of a frame's time on screen (without input lag).
   double photonDelay(double period) const { return photon_.expected(period); }
 
@@ -88,6 +93,7 @@ private:
   PhotonDelay photon_;
   Prediction last_;
   double last_target_ = 0.0;
+  double drawn_time_ = 0.0;
   double lookup_steady_ = -1.0;  ///< when the last follow() looked up (frameShown pairs it)
   // Odometry: declared before the subscriber, the queue outlives the subscription.
   ros::CallbackQueue queue_;

@@ -41,6 +41,9 @@ struct ProjectorPose
   double stamp = 0;
 };
 
+/// Sets `pose.age` and Ok/Stale for ROS time `now`: older than `timeout`, or more than `timeout`
+/// ahead of `now` (tf from before a backward jump of ROS time; age negative), is Stale.
+void ageAt(ProjectorPose& pose, double now, double timeout);
 /// The pose of `frame` in `fixed_frame` at the latest time tf has for the whole chain. `now` is
 /// ros::Time::now() in seconds; with `timeout` > 0, a chain older than `timeout` seconds is Stale.
 ProjectorPose lookupProjectorPose(tf2_ros::Buffer& tf, const std::string& fixed_frame, const std::string& frame,
@@ -73,6 +76,12 @@ public:
               double timeout);
   /// The Transform status is shown no more (rviz's Reset cleared it): the next follow() says it.
   void forget() { shown_ = -1; }
+  /// ROS time jumped backwards: the next follow() looks the pose up anew (nothing of before is kept).
+  void invalidate()
+  {
+    looked_up_ = false;
+    pose_ = ProjectorPose();
+  }
   /// Whether follow() has a Transform status shown.
   bool shown() const { return shown_ != -1; }
   /// The last pose looked up.

@@ -30,6 +30,10 @@ struct CalibrationFile
  */
 std::string resolveCalibrationUrl(const std::string& url, std::string& path);
 
+/// `path` itself when absolute (or `base` is empty), else `base`/`path`: how projector.launch's
+/// nodes take a relative calibration_file or mount_file from the directory roslaunch ran in.
+std::string inDirectory(const std::string& path, const std::string& base);
+
 /**
  * Reads a calibration with camera_calibration_parsers and checks it: structure of the YAML (every
  * field camera_calibration_parsers needs, matrix sizes, numbers), image size, and that

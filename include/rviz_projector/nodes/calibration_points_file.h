@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rviz_projector/core/crosshair_pattern.h"
@@ -48,4 +49,7 @@ std::string calibrationPointsYaml(const CalibrationPoints& points, const std::st
 
 /// Writes `text` to `path` through a temporary file renamed into place; "" or the problem.
 std::string writeTextFile(const std::string& path, const std::string& text);
+/// Writes every (path, text) all or nothing: each to a temporary file first; only when all of them
+/// are written are they renamed into place. A failure leaves none of the files changed.
+std::string writeTextFiles(const std::vector<std::pair<std::string, std::string>>& files);
 }  // namespace rviz_projector
