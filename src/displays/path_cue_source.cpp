@@ -78,7 +78,7 @@ void PathCueSource::onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& ms
   summary_ = summarizeGoals(entries_);
   received_ = true;
   news_ = true;
-  const double now = RosClock::shared().tick().rosNow();  // one clock for every part
+  const double now = RosClock::shared().policy().rosNow();  // read by the display's drain, before this
   timeline_.update(summary_, now, stillness_.still(now));
 }
 

@@ -222,7 +222,9 @@ bool ProjectionMaskDisplay::unusableStamp(const ros::Time& stamp, const char* st
     return true;
   }
   const double max_age = max_age_property_->getFloat();
-  const double age = RosClock::shared().tick().rosNow() - stamp.toSec();  // a data age: ROS time
+  // A data age: ROS time, as read by drainQueue before it handled this message (never a new reading
+  // here: a jump seen in the middle of a drain would clear this very scan at the next one).
+  const double age = RosClock::shared().policy().rosNow() - stamp.toSec();
   if (max_age > 0.0 && age > max_age)
   {
     setStatus(rviz::StatusProperty::Warn, status,
