@@ -92,8 +92,8 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
 
   turn_signal = new rviz::BoolProperty(
       "Turn signal", false,
-      "A curved arrow beside the robot, on the inside of a coming sharp turn, blinking at 1.5 Hz like a car's "
-      "indicator.",
+      "A curved arrow on the floor in front of the robot (see Glyph ahead), beside the path on the inside of a "
+      "coming sharp turn, blinking at 1.5 Hz like a car's indicator.",
       display, SLOT(updateCues()), display);
   turn_angle = boundedFloat("Turn angle", static_cast<float>(defaults.turn.angle * 180.0 / kPi), 1.0f, 360.0f,
                             "Degrees: a turn of the path sharper than this is signalled.", turn_signal, display);
@@ -102,8 +102,9 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
   glyph_size = boundedFloat("Glyph size", static_cast<float>(defaults.glyph_size), 0.01f, 10.0f,
                             "Metres across the turn-signal glyph.", turn_signal, display);
   glyph_ahead = boundedFloat("Glyph ahead", static_cast<float>(defaults.glyph_ahead), -10.0f, 10.0f,
-                             "Metres in front of the robot's centre where the glyph is drawn (beside the robot, "
-                             "where the projector's light falls).",
+                             "Metres in front of the robot's centre (along the path's direction at the robot) "
+                             "where the glyph is drawn, beside the path: where a projector on the robot lights the "
+                             "floor.",
                              turn_signal, display);
 }
 

@@ -68,7 +68,7 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
       "Max lit height", 0.0f,
       "Metres above z = 0 of the fixed frame: nothing of rviz's scene above this height is drawn in the projector view "
       "(a clipping plane; the projector must be mounted above it). It clips only what is in the scene: a person the "
-      "scanner does not see is not protected by it (see the README). 0 = off.",
+      "scanner does not see is not protected by it (see doc/guide/safety-mask.md). 0 = off.",
       display, SLOT(updateMaxLitHeight()), display);
   max_lit_height->setMin(0.0f);
   max_lit_height->setMax(100.0f);
@@ -140,7 +140,7 @@ void ProjectorCameraProperties::createMotionProperties(rviz::Display* display)
   motion_input_lag = new rviz::FloatProperty(
       "Projector input lag", 0.0f,
       "Milliseconds from a frame reaching the projector's input to its light on the floor (the projector's input lag, "
-      "from its data sheet or a review, or measured: see the README). 0 = none.",
+      "from its data sheet or a review, or measured: see doc/guide/motion-compensation.md). 0 = none.",
       motion);
   motion_input_lag->setMin(0.0f);
   motion_input_lag->setMax(500.0f);

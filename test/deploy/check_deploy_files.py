@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Checks the robot deployment files offline (README, "Running on the robot"):
+"""Checks the robot deployment files offline (doc/guide/running-on-the-robot.md):
 
 - launch/projector_host.launch, loaded by roslaunch's own loader: config is required; the node is
   projector_host with the config (and --watch) as arguments, respawned by default, DISPLAY set
   only when display:= is given; the executable is found in the package.
-- config/robot/*.service: `systemd-analyze verify` (no output, exit 0), the keys the README
+- config/robot/*.service: `systemd-analyze verify` (no output, exit 0), the keys the guide
   promises, every `$$NAME` a command uses is set by an Environment= line, and every `bash -c`
   script parses (`bash -n`).
 - config/robot/xorg-projector.conf: no blanking, no DPMS, modesetting; the X unit starts Xorg
