@@ -94,7 +94,7 @@ void ProjectorCameraDisplay::onInitialize()
   connect(&ProjectionChangeNotifier::instance(), &ProjectionChangeNotifier::changed, this,
           &ProjectorCameraDisplay::onSceneChanged, Qt::QueuedConnection);
   updateFrameRate();
-  updateProjectorFrame();
+  pipeline_.setFrameProperty(props_.frame->getStdString());
   applyProjection();
   showVisibilityStatus();
   showLensStatuses();
@@ -112,7 +112,7 @@ void ProjectorCameraDisplay::showVisibilityStatus()
 void ProjectorCameraDisplay::onEnable()
 {
   checkMainViewCost();
-  motion_.clear();
+  pipeline_.reset();
   subscribe();
   updateOutput();
   frame_clock_.start();
@@ -142,10 +142,9 @@ void ProjectorCameraDisplay::reset()
   {
     return;  // not initialised
   }
-  // rviz resets its displays when ROS time jumps backwards (a bag loop): nothing of before is kept.
-  motion_.clear();
-  // Raise again, at once, every problem that still holds.
-  pose_follower_.forget();
+  // rviz resets its displays when ROS time jumps backwards (a bag loop): nothing of before is kept,
+  // and every problem that still holds is raised again, at once.
+  pipeline_.reset();
   overlay_->invalidate();
   ceiling_shown_ = -1;
   showCeiling();
@@ -194,8 +193,7 @@ void ProjectorCameraDisplay::setTopic(const QString& topic, const QString& /*dat
 void ProjectorCameraDisplay::resubscribe()
 {
   unsubscribe();
-  lens_source_.forget();
-  onLensChanged(LensEvent{true, true});
+  onLensChanged(pipeline_.forgetLens());
   subscribe();
 }
 
@@ -205,7 +203,7 @@ void ProjectorCameraDisplay::subscribe()
   {
     return;
   }
-  const std::string error = lens_source_.subscribe(props_.topic->getTopicStd());
+  const std::string error = pipeline_.subscribeLens(props_.topic->getTopicStd());
   setStatus(error.empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, "Topic",
             error.empty() ? QString("OK") : "Error subscribing: " + QString::fromStdString(error));
   updateMotionOdometry();
@@ -213,19 +211,19 @@ void ProjectorCameraDisplay::subscribe()
 
 void ProjectorCameraDisplay::unsubscribe()
 {
-  lens_source_.unsubscribe();
-  motion_.setOdometryTopic(std::string());
+  pipeline_.unsubscribeLens();
+  pipeline_.setOdometryTopic(std::string());
 }
 
 void ProjectorCameraDisplay::updateMotionOdometry()
 {
-  const std::string error = motion_.setOdometryTopic(isEnabled() ? props_.motion_odometry->getTopicStd() : std::string());
+  const std::string error = pipeline_.setOdometryTopic(isEnabled() ? props_.motion_odometry->getTopicStd() : std::string());
   warnIf("Odometry topic", error.empty() ? QString() : "Error subscribing: " + QString::fromStdString(error));
 }
 
 void ProjectorCameraDisplay::showLensStatuses()
 {
-  const LensStatuses s = lens_source_.statuses(props_.topic->getTopic());
+  const LensStatuses s = pipeline_.lensSource().statuses(props_.topic->getTopic());
   setStatus(statusLevel(s.camera_info_level), "CameraInfo", s.camera_info);
   for (const auto& warning : {std::make_pair(QString("Distortion"), s.distortion),
                               std::make_pair(QString("Field of view"), s.field_of_view)})
@@ -236,11 +234,7 @@ void ProjectorCameraDisplay::showLensStatuses()
 
 void ProjectorCameraDisplay::onLensChanged(const LensEvent& event)
 {
-  markChanged();
-  if (event.frame)
-  {
-    updateProjectorFrame();
-  }
+  markChanged();  // a new frame_id: the pipeline restarted the motion history
   if (!event.lens)
   {
     return;  // a new frame_id only: the same lens, window and statuses
@@ -259,19 +253,8 @@ void ProjectorCameraDisplay::onLensChanged(const LensEvent& event)
 void ProjectorCameraDisplay::onFramePropertyChanged()
 {
   markChanged();
-  updateProjectorFrame();
+  pipeline_.setFrameProperty(props_.frame->getStdString());  // a new frame restarts the motion history
   context_->queueRender();  // the frustum in the main view
-}
-
-void ProjectorCameraDisplay::updateProjectorFrame()
-{
-  std::string frame = props_.frame->getStdString();  // the Frame, or the CameraInfo's frame_id
-  frame = frame.empty() ? lens_source_.frameId() : frame;
-  if (frame != projector_frame_)
-  {
-    projector_frame_ = std::move(frame);
-    motion_.clear();  // the poses it remembers are of another frame
-  }
 }
 
 void ProjectorCameraDisplay::applyProjection()
@@ -427,25 +410,28 @@ bool ProjectorCameraDisplay::updateCameraPose()
   {
     fixed_frame_shown_ = fixed_frame_;
     fixed_frame_std_ = fixed_frame_.toStdString();
-    motion_.clear();
   }
-  const ClockPolicy& clock = RosClock::shared().policy();  // read by onFrameTimer for this frame
-  const double now = clock.rosNow();
-  tf2_ros::Buffer& tf = *context_->getTF2BufferPtr();
-  const ProjectorPoseFollower::Step step =
-      pose_follower_.follow(tf, fixed_frame_std_, projectorFrame(), now, props_.tf_timeout->getFloat());
-  if (step.status_changed)  // a stale pose blanks the projector as a missing one does
+  PoseInput in;
+  in.tf = context_->getTF2BufferPtr().get();
+  in.fixed_frame = &fixed_frame_std_;
+  in.motion = MotionSettings{props_.motion_enabled->getBool(), props_.inputLag(), props_.maxPrediction()};
+  in.tf_timeout = props_.tf_timeout->getFloat();
+  in.steady_now = frame_clock_.now();
+  in.period = frame_clock_.period();
+  const PoseStep step = pipeline_.followPose(in, RosClock::shared().policy());  // read by onFrameTimer
+  if (step.transform_status_gone)
+  {
+    deleteStatus(QStringLiteral("Transform"));
+  }
+  if (step.transform_status_changed)  // a stale pose blanks the projector as a missing one does
   {
     setStatus(step.ok ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, QStringLiteral("Transform"),
-              step.ok ? QStringLiteral("OK") : QString::fromStdString(step.problem));
+              step.ok ? QStringLiteral("OK") : QString::fromStdString(step.transform_problem));
   }
   if (step.ok)
   {
-    const MotionSettings settings{props_.motion_enabled->getBool(), props_.inputLag(), props_.maxPrediction()};
-    MotionReport report;
-    view_->setPose(motion_.follow(tf, fixed_frame_std_, pose_follower_.pose(), settings, now, frame_clock_.now(),
-                                  frame_clock_.period(), clock.rate(), report));
-    showMotion(report);
+    view_->setPose(step.pose);
+    showMotion(step.motion);
     showCeiling();
   }
   return step.ok;
@@ -471,7 +457,7 @@ void ProjectorCameraDisplay::updateFootprint()
     overlay_->setFootprintVisible(false);
     return;
   }
-  const FloorOverlayResult lit = overlay_->update(lens(), pose_follower_.pose().optical_to_fixed, own_changes_, props_.footprint->getBool(),
+  const FloorOverlayResult lit = overlay_->update(lens(), pipeline_.poseFollower().pose().optical_to_fixed, own_changes_, props_.footprint->getBool(),
                                                   props_.testPattern() == TestPattern::MetricGrid);
   updateFootprintVisible();
   own_changes_ += lit.grid_changed ? 1 : 0;  // the grid is drawn anew
@@ -488,12 +474,7 @@ bool ProjectorCameraDisplay::prepareFrame()
   {
     return false;
   }
-  pose_ok_ = hasLens() && updateCameraPose();
-  if (!hasLens() && pose_follower_.shown())
-  {
-    deleteStatus(QStringLiteral("Transform"));
-    pose_follower_.forget();
-  }
+  pose_ok_ = updateCameraPose();  // false without a lens (its Transform status goes)
   updateFootprint();
   crosshairs_shown_ = updateCrosshairs();
   if (output_->fitViewport(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0))
@@ -529,30 +510,23 @@ void ProjectorCameraDisplay::onFrameTimer()
   }
   // Only this display's own CameraInfo subscription: never rviz's global queue.
   // An unchanged CameraInfo (camera drivers repeat it with every frame) changes nothing.
-  const LensEvent lens_event = lens_source_.poll();
+  const LensEvent lens_event = pipeline_.pollLens();
   if (lens_event.any())
   {
     onLensChanged(lens_event);
   }
-  // One reading of the clock for this frame (ROS time, its rate, a backward jump).
+  // One reading of the clock for this frame (ROS time, its rate, a backward jump: the pipeline
+  // forgot every pose and prediction of before it).
   const ClockPolicy& clock = RosClock::shared().tick();
-  if (epoch_.changed(clock))
+  if (pipeline_.followClock(clock))
   {
-    onTimeJumpedBack();
+    markChanged();
   }
   // Animated drawings (marching arrows, blinking cues) for this frame's time; each bumps the change
   // counter only when its picture changes.
   ProjectionAnimation::advanceAll(ros::Time(std::max(0.0, clock.rosNow())));
   renderNow();
   frame_clock_.frameDone(frames_rendered_, isEnabled());
-}
-
-void ProjectorCameraDisplay::onTimeJumpedBack()
-{
-  // A bag loop: no pose, prediction or photon-delay measurement of before the jump is kept.
-  motion_.clear();
-  pose_follower_.invalidate();
-  markChanged();
 }
 
 void ProjectorCameraDisplay::onSceneChanged()
@@ -590,12 +564,11 @@ void ProjectorCameraDisplay::renderNow()
   if (publish)
   {
     // Stamped with the time of the pose it was drawn from (the prediction's target when predicted).
-    const double pose_time = motion_.drawnPoseTime();
-    const ros::Time stamp = pose_time > 0.0 && pose_ok_ ? ros::Time(pose_time) : ros::Time::now();
-    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame(), stamp);
+    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame(),
+                              pipeline_.imageStamp(ros::Time::now()));
     output_->swap();
   }
-  motion_.frameShown(frame_clock_.now(), frame_clock_.period());  // the render delay, measured
+  pipeline_.frameShown(frame_clock_.now(), frame_clock_.period());  // the render delay, measured
 }
 
 void ProjectorCameraDisplay::setStatus(rviz::StatusProperty::Level level, const QString& name, const QString& text)

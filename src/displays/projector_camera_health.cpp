@@ -19,14 +19,14 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
   h.frames_rendered = frames_rendered_;
   h.frames_skipped = frames_skipped_;
   h.motion_compensation = props_.motion_enabled->getBool();
-  const Prediction& prediction = motion_.lastPrediction();
+  const Prediction& prediction = motion().lastPrediction();
   h.prediction = h.motion_compensation ? describePrediction(prediction) : std::string("off");
   h.prediction_ms = h.motion_compensation && prediction.extrapolated() ? prediction.horizon * 1e3 : 0.0;
-  h.photon_delay_ms = motion_.photonDelay(frame_clock_.period()) * 1e3;
+  h.photon_delay_ms = motion().photonDelay(frame_clock_.period()) * 1e3;
   h.has_lens = hasLens();
-  h.tf_age_s = hasLens() ? pose_follower_.tfAge() : kNone;  // the pose is looked up only with a lens
-  h.camera_info_age_s = lens_source_.secondsSinceInfo();
-  h.camera_info_messages = lens_source_.messagesReceived();
+  h.tf_age_s = hasLens() ? pipeline_.poseFollower().tfAge() : kNone;  // the pose is looked up only with a lens
+  h.camera_info_age_s = pipeline_.lensSource().secondsSinceInfo();
+  h.camera_info_messages = pipeline_.lensSource().messagesReceived();
   h.pose_ok = hasLens() && pose_ok_;
   if (output_)
   {

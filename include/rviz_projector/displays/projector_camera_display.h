@@ -1,16 +1,15 @@
 // rviz display "rviz_projector/ProjectorCamera": renders the scene through the projector's lens
 // (CameraInfo) from its pose (tf) straight into a full-screen window on the projector's screen.
 // An orchestrator: it owns the properties and statuses and wires the parts together.
-//   ProjectorLensSource        CameraInfo (private queue) -> PinholeModel (core), lens statuses
+//   ProjectorPipeline          the per-frame inputs without rviz: lens (ProjectorLensSource), projector
+//                              frame, clock (ClockPolicy), pose (ProjectorPoseFollower), motion
+//                              compensation (ProjectorMotion); explicit events and resets
 //   ProjectorView              the OGRE camera at the projector's pose, through its lens
 //   ProjectorOutput            output window, render window, viewport, screens, exact letterbox
 //   ProjectionGate             whether a frame is needed; Visibility ticks by display identity
 //   ProjectorImagePublisher    optional Image + matching CameraInfo
 //   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
 //   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
-//   ProjectorPoseFollower      the projector's pose from tf, and when its Transform status changes
-//   ProjectorMotion            motion compensation: the pose predicted for when the light is on the
-//                              floor (MotionPredictor, PhotonDelay: core), Odometry (private queue)
 //   ProjectorFrameClock        when to render: FramePacer (core) deadlines at the Frame rate limit /
 //                              screen refresh, early frames on changes, FrameRateMeter (core)
 //   StatusCache                the statuses shown: only changes reach rviz
@@ -33,15 +32,12 @@
 #include <rviz/display.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "rviz_projector/core/clock_policy.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/screen_choice.h"
 #include "rviz_projector/displays/projector_camera_health.h"
 #include "rviz_projector/displays/projector_camera_properties.h"
 #include "rviz_projector/displays/projector_frame_clock.h"
-#include "rviz_projector/displays/projector_lens_source.h"
-#include "rviz_projector/displays/projector_motion.h"
-#include "rviz_projector/displays/projector_pose.h"
+#include "rviz_projector/displays/projector_pipeline.h"
 #include "rviz_projector/displays/status_cache.h"
 #endif
 
@@ -87,18 +83,18 @@ public:
   /// Frames rendered into the output window so far.
   std::uint64_t framesRendered() const { return frames_rendered_; }
   /// CameraInfo messages handled since the topic was (re)subscribed, changed or not.
-  std::uint64_t cameraInfoMessages() const { return lens_source_.messagesReceived(); }
+  std::uint64_t cameraInfoMessages() const { return pipeline_.lensSource().messagesReceived(); }
   /// The output window (nullptr while none exists).
   ProjectorOutputWindow* outputWindow() const;
   /// The lens in use; valid only when hasLens().
-  const PinholeModel& lens() const { return lens_source_.lens(); }
-  bool hasLens() const { return lens_source_.hasLens(); }
+  const PinholeModel& lens() const { return pipeline_.lens(); }
+  bool hasLens() const { return pipeline_.hasLens(); }
   /// The visibility bit used by the projector view (0 when none could be allocated).
   std::uint32_t visibilityBit() const { return vis_bit_; }
   /// What the display is doing now (frame rate, data ages, blanking, window), for diagnostics.
   ProjectorCameraHealth health() const;
   /// Motion compensation: the last prediction and the time it was made for.
-  const ProjectorMotion& motion() const { return motion_; }
+  const ProjectorMotion& motion() const { return pipeline_.motion(); }
 
 protected:
   void onInitialize() override;
@@ -124,8 +120,6 @@ private Q_SLOTS:
   void applyProjection();
   /// The Frame property changed.
   void onFramePropertyChanged();
-  /// ROS time jumped backwards (a bag loop): forget poses and predictions of before.
-  void onTimeJumpedBack();
   /// Max lit height changed: the projector view's clipping plane.
   void updateMaxLitHeight();
   void updateFrameRate();
@@ -142,9 +136,6 @@ private:
   /// A CameraInfo changed the lens and/or the frame (or was forgotten): statuses, projection,
   /// window size; a new projector frame resets the motion history, a new lens does not.
   void onLensChanged(const LensEvent& event);
-  /// projectorFrame() anew from the Frame property and the CameraInfo; a new frame clears the
-  /// motion history (earlier poses are of another frame).
-  void updateProjectorFrame();
   /// The CameraInfo, Distortion and Field of view statuses, as the lens source says.
   void showLensStatuses();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
@@ -167,7 +158,7 @@ private:
   /// The Max lit height status, when the view's ceiling state changed (cheap: called every frame).
   void showCeiling();
   /// The Frame property, or the CameraInfo's frame_id when it is empty.
-  const std::string& projectorFrame() const { return projector_frame_; }
+  const std::string& projectorFrame() const { return pipeline_.projectorFrame(); }
   /// A Warn status `name` with this text; deleted when the text is empty.
   void warnIf(const QString& name, const QString& warning);
   /// The parts' Ok/Warn/Error levels are rviz's, value for value.
@@ -183,13 +174,9 @@ private:
   ProjectorCameraProperties props_;
   rviz::DisplayGroupVisibilityProperty* visibility_property_ = nullptr;
 
-  ProjectorLensSource lens_source_;
+  ProjectorPipeline pipeline_;  ///< lens, projector frame, clock, pose and motion: the per-frame inputs
   std::pair<std::uint32_t, std::uint32_t> shown_size_{0, 0};  ///< image size the window was laid out for
   bool pose_ok_ = false;
-  ProjectorPoseFollower pose_follower_;
-  ProjectorMotion motion_;
-  EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time resets the followers
-  std::string projector_frame_;  ///< projectorFrame(), kept so that no frame builds it
   QString fixed_frame_shown_;    ///< the fixed frame fixed_frame_std_ was made from
   std::string fixed_frame_std_;
 
