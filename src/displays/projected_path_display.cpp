@@ -37,8 +37,6 @@ enum Style
 
 /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
 constexpr double kArrowLift = 0.001;
-/// How often the private path queue is drained, milliseconds.
-constexpr int kDrainIntervalMs = 5;
 
 rviz::FloatProperty* sizeProperty(const QString& name, float value, const QString& description,
                                   rviz::Property* parent, const char* slot, QObject* receiver)
@@ -130,16 +128,16 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
 ProjectedPathDisplay::~ProjectedPathDisplay()
 {
   ProjectionAnimation::remove(this);
-  drain_timer_.stop();
+  pauseDraining();
   cue_source_.unsubscribe();
 }
 
 void ProjectedPathDisplay::onInitialize()
 {
-  update_nh_.setCallbackQueue(&path_queue_);  // before the base class creates subscriber and filter
+  attach(update_nh_);  // before the base class creates subscriber and filter
   MFDClass::onInitialize();
   // Drained while enabled (onEnable starts the timer, onDisable stops it).
-  connect(&drain_timer_, &QTimer::timeout, this, &ProjectedPathDisplay::drainQueue);
+  setDrainHandler([this] { drainQueue(); });
   // Sees every message before the tf filter holds it back, to say at once why nothing is drawn.
   sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
@@ -154,7 +152,7 @@ void ProjectedPathDisplay::onInitialize()
 void ProjectedPathDisplay::onEnable()
 {
   MFDClass::onEnable();
-  drain_timer_.start(kDrainIntervalMs);
+  resumeDraining();
   scene_node_->setVisible(true);
   for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
   {
@@ -169,7 +167,7 @@ void ProjectedPathDisplay::onEnable()
 void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
-  drain_timer_.stop();  // nothing to drain: no subscription while disabled
+  pauseDraining();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
   for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
   {
@@ -313,7 +311,7 @@ void ProjectedPathDisplay::drainQueue()
   {
     cue_source_.clear();
   }
-  path_queue_.callAvailable();
+  drain();
   if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
   {
     drawCues(ros::Time::now(), false);  // a new goal state shows at once, whatever the clock does

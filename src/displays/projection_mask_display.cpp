@@ -29,7 +29,6 @@ namespace rviz_projector
 {
 namespace
 {
-constexpr int kDrainIntervalMs = 5;
 /// Cloud points this close to z = 0 are the floor itself, not something standing on it.
 constexpr double kFloorClearance = 0.03;
 /// A dense cloud is masked by cells (core snapToCells), at most this many: a 640x480 depth image
@@ -86,7 +85,7 @@ ProjectionMaskDisplay::ProjectionMaskDisplay()
 
 ProjectionMaskDisplay::~ProjectionMaskDisplay()
 {
-  drain_timer_.stop();
+  pauseDraining();
   cloud_sub_.shutdown();
   if (main_window_)
   {
@@ -113,7 +112,7 @@ ProjectionMaskDisplay::~ProjectionMaskDisplay()
 
 void ProjectionMaskDisplay::onInitialize()
 {
-  update_nh_.setCallbackQueue(&path_queue_);
+  attach(update_nh_);
   MFDClass::onInitialize();
   occluder_node_ = scene_node_->createChildSceneNode();
   occluder_mesh_ = std::make_unique<FloorMesh>(scene_manager_, occluder_node_);
@@ -133,14 +132,14 @@ void ProjectionMaskDisplay::onInitialize()
     main_window_->addListener(this);
   }
   // Drained while enabled (onEnable starts the timer, onDisable stops it).
-  connect(&drain_timer_, &QTimer::timeout, this, &ProjectionMaskDisplay::drainQueue);
+  setDrainHandler([this] { drainQueue(); });
   setStatus(rviz::StatusProperty::Warn, "Scan", "No scan received yet: nothing is masked");
 }
 
 void ProjectionMaskDisplay::onEnable()
 {
   MFDClass::onEnable();
-  drain_timer_.start(kDrainIntervalMs);
+  resumeDraining();
   scene_node_->setVisible(true);
   occluder_mesh_->setShown(true);
   updateOutline();
@@ -151,7 +150,7 @@ void ProjectionMaskDisplay::onEnable()
 void ProjectionMaskDisplay::onDisable()
 {
   MFDClass::onDisable();
-  drain_timer_.stop();  // nothing to drain: no subscription while disabled
+  pauseDraining();  // nothing to drain: no subscription while disabled
   cloud_sub_.shutdown();
   scene_node_->setVisible(false);
   occluder_mesh_->setShown(false);
@@ -370,7 +369,7 @@ void ProjectionMaskDisplay::drainQueue()
     clearMask();
     ProjectionChangeNotifier::notify();
   }
-  path_queue_.callAvailable();
+  drain();
   tryPendingCloud();
   releaseStale();
 }

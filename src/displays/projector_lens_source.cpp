@@ -10,7 +10,7 @@ namespace rviz_projector
 {
 ProjectorLensSource::ProjectorLensSource()
 {
-  nh_.setCallbackQueue(&queue_);
+  queue_.attach(nh_);
 }
 
 ProjectorLensSource::~ProjectorLensSource()
@@ -50,7 +50,7 @@ void ProjectorLensSource::forget()
 LensEvent ProjectorLensSource::poll()
 {
   event_ = LensEvent();
-  queue_.callAvailable();
+  queue_.drain();
   return event_;
 }
 

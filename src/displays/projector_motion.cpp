@@ -28,7 +28,7 @@ bool isAlarm(Prediction::State state)
 
 ProjectorMotion::ProjectorMotion()
 {
-  nh_.setCallbackQueue(&queue_);
+  queue_.attach(nh_);
 }
 
 ProjectorMotion::~ProjectorMotion()
@@ -114,7 +114,7 @@ ProjectorPose ProjectorMotion::follow(tf2_ros::Buffer& tf, const std::string& fi
                                       const MotionSettings& settings, double ros_now, double steady_now, double period,
                                       double rate, MotionReport& out)
 {
-  queue_.callAvailable();  // only this part's own Odometry subscription
+  queue_.drain();  // only this part's own Odometry subscription
   lookup_steady_ = steady_now;
   std::string odometry_problem;
   if (tf_pose.stamp <= 0.0)

@@ -123,10 +123,9 @@ private:
   rviz::EnumProperty* style_property_;
   rviz::FloatProperty* path_timeout_property_;
 
-  // Paths arrive on a queue of this display's own (path_queue_), drained every few milliseconds by
-  // its timer: a new plan reaches the projector without waiting for rviz's next main-view frame,
-  // and nobody spins rviz's global queue from inside a display.
-  QTimer drain_timer_;
+  // Paths arrive on a queue of this display's own (the PrivateCallbackQueue base), drained every
+  // few milliseconds while enabled: a new plan reaches the projector without waiting for rviz's next
+  // main-view frame, and nobody spins rviz's global queue from inside a display.
   EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time forgets the old state
   PathSpacer spacer_;
   const SpacedPath* spaced_;

@@ -95,8 +95,6 @@ private:
   rviz::BoolProperty* main_view_property_;
   rviz::RosTopicProperty* cloud_topic_property_;
 
-  QTimer drain_timer_;
-
   EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time forgets the old state
   ros::Subscriber cloud_sub_;
   std::vector<Vec2> scan_points_;

@@ -8,8 +8,9 @@
 #include <string>
 
 #include <QString>
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
+
+#include "rviz_projector/displays/private_callback_queue.h"
 #include <sensor_msgs/CameraInfo.h>
 
 #include "rviz_projector/core/lens_calibration.h"
@@ -76,7 +77,7 @@ private:
   void callback(const sensor_msgs::CameraInfo::ConstPtr& msg);
 
   // Declared before the subscriber: the subscription goes first, its queue after it.
-  ros::CallbackQueue queue_;
+  PrivateCallbackQueue queue_;  ///< drained by the projector's frame clock (paused while disabled)
   ros::NodeHandle nh_;
   ros::Subscriber sub_;
   sensor_msgs::CameraInfo::ConstPtr last_;

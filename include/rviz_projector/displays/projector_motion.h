@@ -11,8 +11,9 @@
 #include <string>
 
 #include <nav_msgs/Odometry.h>
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
+
+#include "rviz_projector/displays/private_callback_queue.h"
 
 #include "rviz_projector/core/motion_predictor.h"
 #include "rviz_projector/core/photon_delay.h"
@@ -96,7 +97,7 @@ private:
   double drawn_time_ = 0.0;
   double lookup_steady_ = -1.0;  ///< when the last follow() looked up (frameShown pairs it)
   // Odometry: declared before the subscriber, the queue outlives the subscription.
-  ros::CallbackQueue queue_;
+  PrivateCallbackQueue queue_;  ///< drained by the projector's frame clock (paused while disabled)
   ros::NodeHandle nh_;
   ros::Subscriber odom_sub_;
   std::string odom_topic_;
