@@ -18,6 +18,14 @@
 //           ACTIVE, then SUCCEEDED at the goal. With ~success_dwell and ~start_delay (s, default 0)
 //           the robot stands still at a reached goal, then after a new goal became active, as a robot
 //           that waits out a start warning would (demo.launch sets them for ProjectedPath's cues).
+// Clock:    ROS time only (simulated under /use_sim_time: the robot then drives, stands and dwells
+//           in step with /clock, at any rate). The simulation advances by the ROS time elapsed
+//           between control ticks: never negative (a backward jump of ROS time -- a bag loop, a
+//           simulator reset, the system clock stepped back -- passes no time, and the pauses go on
+//           from where they were instead of waiting for the old time to come back), at most kMaxGap
+//           per tick (a suspended machine, a clock skipping ahead). The pauses are durations counted
+//           down by that elapsed time, not stamps to wait for. Under /use_sim_time the first goal
+//           starts at the first tick of /clock (not stamped 0 before it).
 // tf:       map -> odom (fixed offset), odom -> base_link (robot pose) at ~tf_rate;
 //           static base_link -> projector_link -> projector_optical_frame.
 
@@ -121,11 +129,17 @@ public:
              path_pub_.getTopic().c_str(), kOdomFrame, replan_rate, tf_rate, obstacle_.center.x,
              obstacle_.center.y, planner_.clearance());
 
-    const ros::Time now = ros::Time::now();
-    publishObstacle(now);
-    broadcastRobotTf(now);
-    last_step_ = ros::SteadyTime::now();
-    startLeg(1, now);
+    if (ros::Time::isValid())
+    {
+      begin(ros::Time::now());
+    }
+    else
+    {
+      // Simulated time before the first /clock: nothing is stamped 0; the timers below first fire
+      // on the clock's first ticks, and the first of them begins.
+      ROS_INFO("demo_navigation: /use_sim_time is set and no /clock has come yet: the first goal "
+               "starts with the clock");
+    }
 
     control_timer_ = nh_.createTimer(ros::Duration(1.0 / tf_rate), &DemoNavigation::onControl, this);
     replan_timer_ = nh_.createTimer(ros::Duration(1.0 / replan_rate), &DemoNavigation::onReplan, this);
@@ -137,7 +151,8 @@ private:
   static constexpr double kRobotRadius = 0.3;
   static constexpr double kClearanceMargin = 0.1;
   static constexpr double kGoalTolerance = 0.05;
-  static constexpr double kMaxStep = 0.1;  // s; larger wall-clock gaps (e.g. suspended) are clipped
+  static constexpr double kMaxStep = 0.02;  // s of ROS time per integration step of the robot
+  static constexpr double kMaxGap = 1.0;    // s; larger gaps between ticks (suspended) are clipped
   static constexpr int kFootprintPoints = 24;
 
   static RobotLimits makeLimits(const ros::NodeHandle& pnh)
@@ -153,42 +168,103 @@ private:
 
   void onControl(const ros::TimerEvent&)
   {
-    // Simulate with the real elapsed (monotonic wall-clock) time, so timer jitter doesn't change
-    // the robot's speed.
-    const ros::SteadyTime steady_now = ros::SteadyTime::now();
-    const double dt = std::clamp((steady_now - last_step_).toSec(), 0.0, kMaxStep);
-    last_step_ = steady_now;
     const ros::Time now = ros::Time::now();
-    if (now >= hold_until_)
+    if (now.isZero())
     {
-      robot_.step(dt);  // otherwise: standing still (start delay, or dwelling at a reached goal)
+      return;  // simulated time, no /clock yet
     }
-    broadcastRobotTf(now);
-
-    if (dwelling_)
+    if (!started_)
     {
-      if (now >= hold_until_)
-      {
-        dwelling_ = false;
-        startLeg((goal_index_ + 1) % goals_.size(), now);
-      }
+      begin(now);
       return;
     }
-    const Vec2 goal = goals_[goal_index_];
-    if (distance(robot_.pose().position(), goal) < kGoalTolerance)
+    advance(elapsedSince(now), now);
+    broadcastRobotTf(now);
+  }
+
+  // The first leg, at the first valid ROS time.
+  void begin(const ros::Time& now)
+  {
+    started_ = true;
+    last_tick_ = now;
+    publishObstacle(now);
+    broadcastRobotTf(now);
+    startLeg(1, now);
+  }
+
+  // ROS time since the previous control tick, in [0, kMaxGap] (see "Clock" at the top).
+  double elapsedSince(const ros::Time& now)
+  {
+    const double dt = (now - last_tick_).toSec();
+    last_tick_ = now;
+    if (dt < 0.0)
     {
-      ROS_INFO("demo_navigation: reached goal %zu (%.2f, %.2f) after %.1f s", goal_index_, goal.x,
-               goal.y, (now - leg_start_).toSec());
-      goal_status_ = actionlib_msgs::GoalStatus::SUCCEEDED;
-      publishStatus(now);
-      if (success_dwell_ > 0.0)
+      ROS_WARN("demo_navigation: ROS time jumped back by %.3f s: no time passes for the robot, its "
+               "pause (%.2f s left) and motion go on from here",
+               -dt, hold_left_);
+      return 0.0;
+    }
+    if (dt > kMaxGap)
+    {
+      ROS_WARN_THROTTLE(10.0, "demo_navigation: %.3f s of ROS time since the last control tick: "
+                        "the robot moves %.1f s of it",
+                        dt, kMaxGap);
+      return kMaxGap;
+    }
+    return dt;
+  }
+
+  // Moves the simulation on by dt s of ROS time: the pause at a reached goal, then the start
+  // delay, then driving (in steps of kMaxStep, stopping at the goal). A leg's change is stamped
+  // with this tick's time; what is left of the tick after it is not used.
+  void advance(double dt, const ros::Time& now)
+  {
+    leg_time_ += dt;
+    if (dwelling_)
+    {
+      hold_left_ -= dt;
+      if (hold_left_ > 0.0)
       {
-        dwelling_ = true;
-        hold_until_ = now + ros::Duration(success_dwell_);
         return;
       }
+      dwelling_ = false;
       startLeg((goal_index_ + 1) % goals_.size(), now);
+      return;
     }
+    const double held = std::min(dt, hold_left_);  // standing still: start delay
+    hold_left_ -= held;
+    dt -= held;
+    while (dt > 0.0 && !atGoal())
+    {
+      const double step = std::min(dt, kMaxStep);
+      robot_.step(step);
+      dt -= step;
+    }
+    if (atGoal())
+    {
+      reachGoal(now);
+    }
+  }
+
+  bool atGoal() const
+  {
+    return distance(robot_.pose().position(), goals_[goal_index_]) < kGoalTolerance;
+  }
+
+  void reachGoal(const ros::Time& now)
+  {
+    const Vec2 goal = goals_[goal_index_];
+    ROS_INFO("demo_navigation: reached goal %zu (%.2f, %.2f) after %.1f s", goal_index_, goal.x,
+             goal.y, leg_time_);
+    goal_status_ = actionlib_msgs::GoalStatus::SUCCEEDED;
+    publishStatus(now);
+    if (success_dwell_ > 0.0)
+    {
+      dwelling_ = true;
+      hold_left_ = success_dwell_;
+      return;
+    }
+    startLeg((goal_index_ + 1) % goals_.size(), now);
   }
 
   void publishStatus(const ros::Time& now)
@@ -204,6 +280,10 @@ private:
 
   void onReplan(const ros::TimerEvent&)
   {
+    if (!started_)
+    {
+      return;
+    }
     // Re-broadcast the (unchanged) robot pose with the plan's stamp first, so consumers can
     // transform the plan at its own stamp right away instead of waiting for the next tf tick.
     const ros::Time now = ros::Time::now();
@@ -225,10 +305,19 @@ private:
       footprint.polygon.points.push_back(p);
     }
     footprint_pub_.publish(footprint);
-    publishStatus(footprint.header.stamp);
+    if (started_)
+    {
+      publishStatus(footprint.header.stamp);
+    }
   }
 
-  void onObstacle(const ros::TimerEvent&) { publishObstacle(ros::Time::now()); }
+  void onObstacle(const ros::TimerEvent&)
+  {
+    if (started_)
+    {
+      publishObstacle(ros::Time::now());
+    }
+  }
 
   // --- navigation ----------------------------------------------------------------------------
 
@@ -237,9 +326,10 @@ private:
     const Vec2 from = robot_.pose().position();
     goal_index_ = goal_index;
     leg_start_ = stamp;
+    leg_time_ = 0.0;
     ++goal_count_;
     goal_status_ = actionlib_msgs::GoalStatus::ACTIVE;
-    hold_until_ = stamp + ros::Duration(start_delay_);
+    hold_left_ = start_delay_;
     publishStatus(stamp);
     const Vec2 goal = goals_[goal_index_];
     ROS_INFO("demo_navigation: new goal %zu (%.2f, %.2f), %.2f m from the robot at (%.2f, %.2f)",
@@ -382,16 +472,18 @@ private:
   SimulatedRobot robot_;
   tf2::Transform map_to_odom_;
   std::size_t goal_index_{0};
-  ros::Time leg_start_;
-  ros::SteadyTime last_step_;
+  ros::Time leg_start_;        // stamp of the current goal
+  double leg_time_{0.0};       // s of ROS time since then (backward jumps not counted)
+  bool started_{false};        // the first goal has started (ROS time was valid)
+  ros::Time last_tick_;        // ROS time of the previous control tick
 
   ros::Publisher path_pub_;
   ros::Publisher goal_pub_;
   ros::Publisher status_pub_;
   double start_delay_{0.0};
   double success_dwell_{0.0};
-  ros::Time hold_until_;
-  bool dwelling_{false};
+  double hold_left_{0.0};      // s of ROS time the robot still stands (start delay or dwell)
+  bool dwelling_{false};       // standing at a reached goal
   unsigned goal_count_{0};
   std::uint8_t goal_status_{actionlib_msgs::GoalStatus::ACTIVE};
   ros::Publisher obstacle_pub_;
