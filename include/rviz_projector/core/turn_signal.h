@@ -1,5 +1,5 @@
 // Turn-signal cue of ProjectedPath: a coming sharp turn of the path, and the curved-arrow glyph
-// shown beside the robot on the inside of the turn (no ROS, no OGRE).
+// shown in front of the robot, to the inside of the turn (no ROS, no OGRE).
 #pragma once
 
 #include <vector>
@@ -50,10 +50,10 @@ TurnDetection detectTurn(const std::vector<Vec2>& points, const std::vector<doub
 /**
  * The turn-signal glyph as triangles (3 vertices each, counter-clockwise seen from above) appended
  * to `triangles`: a curved arrow (a quarter-circle band ending in an arrow head) that bends to
- * `side`, drawn beside the robot on the inside of the turn.
+ * `side`, drawn in front of the robot, to the inside of the turn.
  *
  * Placement: centred at robot + ahead * forward(heading) + aside * left-normal(heading) for Left (the
- * right normal for Right): beside the robot and `ahead` metres in front of it, where a projector
+ * right normal for Right): `ahead` metres in front of the robot and `aside` to the side, where a projector
  * that lights the floor in front of the robot can show it. `size` metres across (its box), the band
  * `size / 5` wide; the band starts pointing along `heading` and turns by 90 degrees to `side`, the
  * head at its end pointing along the turned direction. Nothing is appended for TurnSide::None,

@@ -15,7 +15,7 @@
 //   StatusCache                the statuses shown: only changes reach rviz
 //   ProjectorCameraProperties  the properties, and the output window they ask for
 //   health() (projector_camera_health.cpp)  what the display does, in plain numbers
-// See README "Architecture" for how one frame flows.
+// doc/dev/architecture.md says how one frame flows.
 #pragma once
 
 #ifndef Q_MOC_RUN

@@ -41,7 +41,7 @@ public:
   {
     Off,             ///< no Max lit height
     Clipping,        ///< the projector is above the height: everything above it is clipped
-    ProjectorBelow,  ///< the projector is not above the height: nothing is clipped (see README)
+    ProjectorBelow,  ///< the projector is not above the height: nothing is clipped (doc/guide/safety-mask.md)
     NoLens,          ///< no lens yet
   };
   Ceiling ceiling() const { return ceiling_; }
