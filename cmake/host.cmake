@@ -7,6 +7,7 @@ add_executable(projector_host
   src/host/host_config.cpp
   src/host/host_curtain.cpp
   src/host/host_diagnostics.cpp
+  src/host/host_display_status.cpp
   src/host/host_file_watcher.cpp
   src/host/host_options.cpp
   src/host/host_projector_status.cpp

@@ -1,7 +1,8 @@
 # Projector set-up nodes and their tests (included from CMakeLists.txt before the install section).
 #   projector_info_publisher  calibration YAML -> latched sensor_msgs/CameraInfo
 #   path_to_markers           nav_msgs/Path -> the ProjectedPath arrows as a visualization_msgs/MarkerArray
-#   calibrate_projector       crosshair template, mount solver from measured floor points (issue 12)
+#   calibrate_projector       crosshair template, mount solver from measured floor points (issue 12;
+#                             src/calibration, with the calibration and mount file formats)
 #   mount_tf_publisher        mount.yaml -> the static tf parent_frame -> projector frame (projector.launch)
 
 # yaml-cpp: to name the field at fault in a calibration file (camera_calibration_parsers only says
@@ -11,10 +12,11 @@ find_package(roslib REQUIRED)
 set(${PROJECT_NAME}_NODES_INCLUDE_DIRS ${YAML_CPP_INCLUDE_DIR} ${roslib_INCLUDE_DIRS})
 set(${PROJECT_NAME}_NODES_LIBRARIES ${YAML_CPP_LIBRARIES} ${roslib_LIBRARIES})
 
-# Shared by the nodes and their tests (compiled into each; not a library of the package).
-set(${PROJECT_NAME}_CALIBRATION_SOURCES src/nodes/calibration_file.cpp src/nodes/calibration_file_yaml.cpp)
+# Shared by the nodes and their tests (compiled into each; not a library of the package). The file
+# formats (calibration YAML, mount file) live in src/calibration: calibrate_projector owns them.
+set(${PROJECT_NAME}_CALIBRATION_SOURCES src/calibration/calibration_file.cpp src/calibration/calibration_file_yaml.cpp)
 set(${PROJECT_NAME}_PATH_MARKERS_SOURCES src/nodes/path_markers.cpp)
-set(${PROJECT_NAME}_MOUNT_FILE_SOURCES src/nodes/mount_file.cpp)
+set(${PROJECT_NAME}_MOUNT_FILE_SOURCES src/calibration/mount_file.cpp)
 
 add_executable(projector_info_publisher
   ${${PROJECT_NAME}_CALIBRATION_SOURCES}
@@ -25,13 +27,13 @@ add_executable(path_to_markers
   src/nodes/path_to_markers.cpp
 )
 add_executable(calibrate_projector
-  src/nodes/calibrate_projector.cpp
-  src/nodes/calibrate_projector_options.cpp
+  src/calibration/calibrate_projector.cpp
+  src/calibration/calibrate_projector_options.cpp
   ${${PROJECT_NAME}_CALIBRATION_SOURCES}
-  src/nodes/calibration_points_file.cpp
-  src/nodes/calibration_report.cpp
-  src/nodes/calibration_run.cpp
-  src/nodes/clicked_points.cpp
+  src/calibration/calibration_points_file.cpp
+  src/calibration/calibration_report.cpp
+  src/calibration/calibration_run.cpp
+  src/calibration/clicked_points.cpp
   ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
 )
 add_executable(mount_tf_publisher

@@ -93,6 +93,8 @@ struct Options
   int threshold = 64;        // a pixel is lit when a colour channel reaches this
   double tf_lead_ms = 0.0;   // check of the bench itself: tf carries the pose this much ahead
   double tf_rate = 50.0;     // Hz of map -> base_link (and of the odometry)
+  double info_rate = 0.0;    // Hz: the same CameraInfo again, a new stamp each time, as camera drivers
+                             // and `rostopic pub -r` do (0: once, latched)
   std::string out;
 };
 
@@ -131,6 +133,7 @@ Options parseOptions(int argc, char** argv)
     else if (a == "--threshold") o.threshold = std::stoi(value());
     else if (a == "--tf-lead-ms") o.tf_lead_ms = std::stod(value());
     else if (a == "--tf-rate") o.tf_rate = std::stod(value());
+    else if (a == "--info-rate") o.info_rate = std::stod(value());
     else if (a == "--out") o.out = value();
     else if (a.rfind("__", 0) == 0 || a.find(":=") != std::string::npos) continue;  // ROS remaps
     else fail("unknown option " + a);
@@ -305,11 +308,20 @@ private:
     tf2_ros::TransformBroadcaster broadcaster;
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o_.tf_rate));
     auto next = Clock::now();
+    double next_info = 0.0;
+    sensor_msgs::CameraInfo info = cameraInfo(projector_);
     while (!stop_ && ros::ok())
     {
       next += period;
       std::this_thread::sleep_until(next);
       const ros::Time now = ros::Time::now();
+      if (o_.info_rate > 0.0 && now.toSec() >= next_info)
+      {
+        // The same lens with every "camera frame" (at most the tf rate), a new stamp each time.
+        info.header.stamp = now;
+        info_pub_.publish(info);
+        next_info = now.toSec() + 1.0 / o_.info_rate;
+      }
       const slip::RobotState s = robot_.at(now + ros::Duration(o_.tf_lead_ms / 1000.0));
       geometry_msgs::TransformStamped t;
       t.header.stamp = now;

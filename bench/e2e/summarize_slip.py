@@ -131,16 +131,16 @@ def main(argv):
             appear = figures(slips[key][1], slips[key][3]) if key in slips else None
             fps = meta.get(key, {}).get("frames_per_s", math.nan)
             check = ""
-            if setting == "on" and motion != "still" and motion not in STRESS:
+            if setting.startswith("on") and motion != "still" and motion not in STRESS:
                 failed = [(t, fig_key, limit) for t, fig_key, limit in TARGETS
                           if cont is None or not cont[fig_key] <= limit]
                 check = "PASS" if not failed else "FAIL: " + ", ".join(
                     "%s %s" % (fig_key.replace("abs_mean", "|mean|"), fmt(cont, fig_key)) for _, fig_key, _ in failed)
                 verdicts.append((label, lag, check))
-            elif setting == "on" and motion in STRESS:
+            elif setting.startswith("on") and motion in STRESS:
                 check = "(stress case, no target)"
             name = "%s, lag %g" % (setting, lag)
-            print("%-30s %-11s %6s / %5s / %5s  %6s  %5s    %6s / %5s / %5s  %6s  %5s    %6.1f   %s" % (
+            print("%-30s %-17s %6s / %5s / %5s  %6s  %5s    %6s / %5s / %5s  %6s  %5s    %6.1f   %s" % (
                 label, name, fmt(cont, "median"), fmt(cont, "p95"), fmt(cont, "max"), fmt(cont, "mean"),
                 fmt(cont, "delay"), fmt(appear, "median"), fmt(appear, "p95"), fmt(appear, "max"),
                 fmt(appear, "mean"), fmt(appear, "delay"), fps, check))

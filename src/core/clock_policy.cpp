@@ -23,6 +23,7 @@ bool ClockPolicy::update(double ros_now, double steady_now)
   if (jumped_back)
   {
     ++epoch_;
+    jump_steady_ = steady_now;
     // The rate of the clock is the same after the loop: keep it, measure afresh from here.
     anchor_ros_ = ros_now;
     anchor_steady_ = steady_now;

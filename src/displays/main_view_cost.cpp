@@ -11,8 +11,6 @@
 #include <rviz/render_panel.h>
 #include <rviz/view_manager.h>
 
-#include "rviz_projector/displays/host_mode.h"
-
 namespace rviz_projector
 {
 bool isSoftwareRenderer(const std::string& gl_renderer)
@@ -41,9 +39,9 @@ std::string mainViewCostWarning(unsigned int fsaa, const std::string& gl_rendere
          "with --disable-anti-aliasing (demo.launch does), or lower Global Options > Frame Rate.";
 }
 
-std::string mainViewCostWarning(rviz::DisplayContext& context)
+std::string mainViewCostWarning(rviz::DisplayContext& context, const RenderPolicy& policy)
 {
-  if (hostMode())
+  if (policy.host)
   {
     return std::string();  // projector_host renders no main view
   }

@@ -16,7 +16,6 @@
 #include <rviz/properties/tf_frame_property.h>
 
 #include "rviz_projector/core/data_age.h"
-#include "rviz_projector/core/marching.h"
 #include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
@@ -34,9 +33,6 @@ enum Style
   kFlat = 0,
   kSolid = 1,
 };
-
-/// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
-constexpr double kArrowLift = 0.001;
 
 rviz::FloatProperty* sizeProperty(const QString& name, float value, const QString& description,
                                   rviz::Property* parent, const char* slot, QObject* receiver)
@@ -139,7 +135,10 @@ void ProjectedPathDisplay::onInitialize()
   // Drained while enabled (onEnable starts the timer, onDisable stops it).
   setDrainHandler([this] { drainQueue(); });
   // Sees every message before the tf filter holds it back, to say at once why nothing is drawn.
-  sub_.registerCallback(boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
+  // As a MessageEvent (the connection header says whether the publisher latches); message_filters
+  // hands a bound callback a bare ConstPtr unless told the parameter type.
+  sub_.registerCallback<const ros::MessageEvent<nav_msgs::Path const>&>(
+      boost::bind(&ProjectedPathDisplay::checkFrame, this, boost::placeholders::_1));
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
@@ -201,8 +200,11 @@ void ProjectedPathDisplay::reset()
   robot_status_shown_ = CueStatus();
   state_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
-  // rviz's Reset: subscribe again, so that a latched plan comes back by itself.
-  if (isEnabled() && sub_.getSubscriber())
+  // rviz's Reset (also at every backward jump of ROS time: a bag loop): a plan from a latched
+  // publisher comes back only by subscribing again. A planner that publishes unlatched keeps its
+  // subscription: subscribing again would lose every plan sent before the new connection stands
+  // (about 0.2 s: the first plan of each bag loop).
+  if (isEnabled() && sub_.getSubscriber() && latched_publisher_)
   {
     unsubscribe();
     subscribe();
@@ -267,8 +269,12 @@ void ProjectedPathDisplay::fixedFrameChanged()
   }
 }
 
-void ProjectedPathDisplay::checkFrame(const nav_msgs::Path::ConstPtr& msg)
+void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path const>& event)
 {
+  const nav_msgs::Path::ConstPtr& msg = event.getConstMessage();
+  const boost::shared_ptr<ros::M_string>& header = event.getConnectionHeaderPtr();
+  const auto latching = header ? header->find("latching") : ros::M_string::const_iterator();
+  latched_publisher_ = header && latching != header->end() && latching->second == "1";
   if (msg->header.frame_id.empty())
   {
     setStatus(rviz::StatusProperty::Error, "Transform", "Path has an empty frame_id: nothing is drawn");
@@ -277,8 +283,11 @@ void ProjectedPathDisplay::checkFrame(const nav_msgs::Path::ConstPtr& msg)
   std::string error;
   if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
   {
-    setStatus(rviz::StatusProperty::Error, "Transform",
-              QString::fromStdString(error) + " (the path is drawn once the transform is available)");
+    // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
+    const bool expected = RosClock::shared().policy().sinceJump() < ClockPolicy::kJumpGrace;
+    setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
+              QString(expected ? "Waiting for tf after ROS time jumped back (a bag loop?): " : "") +
+                  QString::fromStdString(error) + " (the path is drawn once the transform is available)");
   }
 }
 
@@ -314,7 +323,7 @@ void ProjectedPathDisplay::drainQueue()
   drain();
   if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
   {
-    drawCues(ros::Time::now(), false);  // a new goal state shows at once, whatever the clock does
+    drawCues(cueTime(), false);  // a new goal state shows at once, whatever the clock does
   }
   checkPathTimeout();
 }
@@ -345,18 +354,6 @@ void ProjectedPathDisplay::checkPathTimeout()
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
   ProjectionChangeNotifier::notify();
   context_->queueRender();
-}
-
-void ProjectedPathDisplay::checkMarchingMode()
-{
-  if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
-  {
-    setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
-  }
-  else
-  {
-    deleteStatus("Marching");
-  }
 }
 
 void ProjectedPathDisplay::updateSpacing()
@@ -446,7 +443,7 @@ void ProjectedPathDisplay::redraw()
     {
       deleteStatus("Style");
     }
-    drawCues(ros::Time::now(), true);
+    drawCues(cueTime(), true);
     return;
   }
   glyph_mesh_->clear();
@@ -479,123 +476,6 @@ void ProjectedPathDisplay::redraw()
     arrow_mesh_->setFlatTriangles(triangles_.flatArrows(), height + kArrowLift, arrow_colour);
   }
   circle_mesh_->setFlatTriangles(triangles_.destination(), height, circle_colour);
-  ++mesh_builds_;
-  ProjectionChangeNotifier::notify();
-  context_->queueRender();
-}
-
-bool ProjectedPathDisplay::cuesActive() const
-{
-  return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_source_.subscribed();
-}
-
-void ProjectedPathDisplay::updateCues()
-{
-  cue_settings_ = cue_properties_->settings();
-  cue_source_.setParameters(cue_properties_->goalParameters());
-  checkMarchingMode();
-  if (!cuesActive() && arrow_mesh_)
-  {
-    robot_status_shown_ = CueStatus();
-    deleteStatus("Robot");
-  }
-  rebuild();  // re-spaced (a marching phase) and drawn with the new settings at once
-}
-
-void ProjectedPathDisplay::updateStateTopic()
-{
-  if (!initialized())
-  {
-    return;
-  }
-  cue_source_.subscribe(update_nh_, cue_properties_->state_topic->getStdString());
-  state_status_shown_ = CueStatus();
-  deleteStatus("State");
-  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);  // e.g. an invalid topic name
-  updateCues();
-}
-
-void ProjectedPathDisplay::update(float /*wall_dt*/, float /*ros_dt*/)
-{
-  advance(ros::Time::now());  // the main view animates without a projector too
-}
-
-void ProjectedPathDisplay::advance(const ros::Time& now)
-{
-  if (!arrow_mesh_ || !isEnabled() || !last_msg_ || !cuesActive() || now == last_advance_)
-  {
-    return;  // two projectors tick at the same time: drawn once
-  }
-  drawCues(now, false);
-}
-
-void ProjectedPathDisplay::showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown)
-{
-  if (status.level == shown.level && status.text == shown.text)
-  {
-    return;  // statuses change rarely; this runs at the frame rate
-  }
-  shown = status;
-  if (status.text.empty())
-  {
-    deleteStatus(name);
-    return;
-  }
-  const rviz::StatusProperty::Level level = status.level == CueStatus::Level::Ok     ? rviz::StatusProperty::Ok
-                                            : status.level == CueStatus::Level::Warn ? rviz::StatusProperty::Warn
-                                                                                     : rviz::StatusProperty::Error;
-  setStatus(level, name, QString::fromStdString(status.text));
-}
-
-void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
-{
-  last_advance_ = now;
-  const PathCueInput input = cue_source_.inputAt(now, *context_->getFrameManager(),
-                                                 cue_properties_->robot_frame->getFrameStd(),
-                                                 cue_settings_.needsRobot());
-  showCueStatus("Robot", cue_source_.robotStatus(), robot_status_shown_);
-  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);
-  if (!last_msg_)
-  {
-    return;
-  }
-  const SpacingParameters& parameters = spacer_.parameters();
-  // Marching needs Exact spacing (a Marching warning says so otherwise): no re-spacing per frame then.
-  const double phase = cue_settings_.marching && parameters.mode == SpacingMode::Exact
-                           ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing)
-                           : 0.0;
-  if (phase != spaced_phase_)
-  {
-    spaced_ = &spacer_.space(floor_points_, phase);
-    spaced_phase_ = phase;
-  }
-  cue_next_.build(floor_points_, *spaced_, parameters, cue_settings_, input);
-  const auto same = [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Vec2& p, const Vec2& q) {
-             return p.x == q.x && p.y == q.y;
-           });
-  };
-  if (!force && input.goal.colour == cue_colour_drawn_ && cue_next_.cross() == cue_drawn_.cross() &&
-      cue_next_.destinationAlpha() == cue_drawn_.destinationAlpha() &&
-      cue_next_.arrowAlpha() == cue_drawn_.arrowAlpha() && same(cue_next_.arrows(), cue_drawn_.arrows()) &&
-      same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()))
-  {
-    return;  // the projector already shows exactly this: no upload, no frame
-  }
-  std::swap(cue_next_, cue_drawn_);
-  cue_colour_drawn_ = input.goal.colour;
-  const double height = height_property_->getFloat();
-  const float alpha = alpha_property_->getFloat();
-  Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
-  arrow_colour.a = alpha;
-  Ogre::ColourValue destination_colour =
-      input.goal.colour == GoalCueFrame::Colour::Failed      ? cue_properties_->failed_color->getOgreColor()
-      : input.goal.colour == GoalCueFrame::Colour::Succeeded ? cue_properties_->succeeded_color->getOgreColor()
-                                                              : circle_color_property_->getOgreColor();
-  destination_colour.a = alpha * cue_drawn_.destinationAlpha();
-  arrow_mesh_->setFlatTriangles(cue_drawn_.arrows(), cue_drawn_.arrowAlpha(), height + kArrowLift, arrow_colour);
-  circle_mesh_->setFlatTriangles(cue_drawn_.destination(), height, destination_colour);
-  glyph_mesh_->setFlatTriangles(cue_drawn_.glyph(), height + kArrowLift, arrow_colour);
   ++mesh_builds_;
   ProjectionChangeNotifier::notify();
   context_->queueRender();

@@ -9,7 +9,6 @@
 #include <rviz/properties/display_group_visibility_property.h>
 #include <rviz/properties/display_visibility_property.h>
 
-#include "rviz_projector/displays/host_mode.h"
 #include "rviz_projector/displays/scene_signature.h"
 
 namespace rviz_projector
@@ -89,7 +88,7 @@ bool foreignShown(const rviz::Property* entries)
   return visitShownForeign(entries, [](const rviz::Display&) { return true; });
 }
 
-/// Mixes the scene graphs of the shown displays not from this package (host mode, host_mode.h).
+/// Mixes the scene graphs of the shown displays not from this package (host policy, render_policy.h).
 void foreignScene(const rviz::Property* entries, std::uint64_t& hash)
 {
   visitShownForeign(entries, [&hash](const rviz::Display& display) {
@@ -127,7 +126,8 @@ bool FrameState::operator==(const FrameState& o) const
          drawable == o.drawable && foreign_scene == o.foreign_scene;
 }
 
-ProjectionGate::ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner) : group_(group), owner_(owner)
+ProjectionGate::ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner, const RenderPolicy& policy)
+  : group_(group), owner_(owner), policy_(policy)
 {
   connect(group_, &rviz::DisplayGroup::displayRemoved, this, &ProjectionGate::onDisplayRemoved);
 }
@@ -222,12 +222,12 @@ bool ProjectionGate::needsFrame(const FrameState& requested)
 {
   FrameState state = requested;
   bool every_tick = showsForeignDisplays();
-  if (every_tick && hostMode())
+  if (every_tick && policy_.host)
   {
     // projector_host: other packages' displays are seen through their scene graph; a keep-alive
     // frame catches content they change in place (colours, a texture).
     state.foreign_scene = foreignSceneSignature();
-    const double keep_alive = hostKeepAliveSeconds();
+    const double keep_alive = policy_.keep_alive_s;
     every_tick = keep_alive > 0.0 && (!since_last_frame_.isValid() || since_last_frame_.elapsed() >= keep_alive * 1000.0);
   }
   if (have_last_ && state == last_ && !every_tick)

@@ -246,8 +246,12 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
   Ogre::Quaternion orientation;
   if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
   {
-    setStatus(rviz::StatusProperty::Error, "Transform",
-              QString("No transform from '%1' at the scan's stamp").arg(QString::fromStdString(msg->header.frame_id)));
+    // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
+    const bool expected = RosClock::shared().policy().sinceJump() < ClockPolicy::kJumpGrace;
+    setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
+              QString("%1No transform from '%2' at the scan's stamp")
+                  .arg(expected ? "Waiting for tf after ROS time jumped back (a bag loop?): " : "")
+                  .arg(QString::fromStdString(msg->header.frame_id)));
     return;
   }
   setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");

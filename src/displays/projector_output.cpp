@@ -14,7 +14,6 @@
 #include <QWindow>
 
 #include "rviz_projector/core/screen_choice.h"
-#include "rviz_projector/displays/host_mode.h"
 #include "rviz_projector/displays/projector_output_window.h"
 
 namespace rviz_projector
@@ -48,8 +47,9 @@ QRect defaultWindowedGeometry(const QScreen* screen, const QSize& image, bool co
 }
 }  // namespace
 
-ProjectorOutput::ProjectorOutput(const QString& title, Ogre::Camera* camera, Ogre::RenderTargetListener* listener)
-  : title_(title), camera_(camera), listener_(listener)
+ProjectorOutput::ProjectorOutput(const QString& title, Ogre::Camera* camera, Ogre::RenderTargetListener* listener,
+                                 const RenderPolicy& policy)
+  : title_(title), camera_(camera), listener_(listener), policy_(policy)
 {
   allOutputs().insert(this);
   if (QCoreApplication::instance() != nullptr)
@@ -256,7 +256,7 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
   // only the projector. Once several screens were seen, the primary is kept free as in rviz (a
   // projector unplugged from a robot with a monitor: windowed on the monitor until it is back).
   seen_several_screens_ = seen_several_screens_ || qt_screens.size() >= 2;
-  const bool shares_rviz = hostMode() ? (seen_several_screens_ && choice.shares_rviz_screen && !named) :
+  const bool shares_rviz = policy_.host ? (seen_several_screens_ && choice.shares_rviz_screen && !named) :
                                         (qt_screens.size() < 2 || (choice.shares_rviz_screen && !named));
   const bool full_screen = request.full_screen && !shares_rviz;
   if (!window_ || window_->isFullScreenOn() != full_screen || window_->fsaa() != request.fsaa)

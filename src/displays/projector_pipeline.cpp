@@ -83,6 +83,16 @@ PoseStep ProjectorPipeline::followPose(const PoseInput& in, const ClockPolicy& c
   step.ok = followed.ok;
   step.transform_status_changed = followed.status_changed;  // a stale pose blanks as a missing one
   step.transform_problem = followed.problem;
+  // Right after a backward jump: tf not there yet (rviz cleared its buffer) or still the pose of
+  // before the jump (rviz has not cleared it yet): expected for a moment, a warning.
+  const ProjectorPose& pose = pose_.pose();
+  step.transform_problem_expected =
+      !step.ok && clock.sinceJump() < ClockPolicy::kJumpGrace &&
+      (pose.state == ProjectorPose::NoTransform || (pose.state == ProjectorPose::Stale && pose.age < 0.0));
+  if (step.transform_problem_expected)
+  {
+    step.transform_problem = "Waiting for tf after ROS time jumped back (a bag loop?): " + step.transform_problem;
+  }
   if (step.ok)
   {
     step.pose = motion_.follow(*in.tf, fixed_frame, pose_.pose(), in.motion, now, in.steady_now, in.period,

@@ -171,12 +171,21 @@ private:
   }
 
   /// A display of `class_id` built (as rviz builds every display before it initialises it) and
-  /// never initialised: no scene, no subscription, only its properties. Kept for the life of the
-  /// process, one per class: rviz's displays cannot be deleted uninitialised (MessageFilterDisplay's
-  /// destructor resets its tf filter, which exists only after initialisation). Qt thread only.
+  /// never initialised: no scene, no subscription, only its properties. Qt thread only.
+  ///
+  /// Deliberately never deleted: kept for the life of the process, one per class (a bounded set,
+  /// reused by every later check). rviz's displays cannot be deleted uninitialised, and rviz itself
+  /// never does it (it initialises every display it makes at once), so plugins need not support it:
+  /// every MessageFilterDisplay (rviz/LaserScan, rviz/Path, rviz/PointCloud2, ...) clears its tf
+  /// filter in its destructor, and that filter is made only by onInitialize(): deleting one
+  /// dereferences a null pointer (tried with rviz 1.14: SIGSEGV). Initialising a prototype so that
+  /// it can be deleted is no way out: that needs the running VisualizationManager (scene nodes, tf
+  /// filters in the live scene), which a check must not touch. Not pluginlib: rviz makes its
+  /// displays as unmanaged instances, after which class_loader never unloads a plugin library, so
+  /// the prototypes' code stays loaded. doc/dev/decisions.md#projector_host says the same.
   rviz::Display* prototypeOf(const QString& class_id)
   {
-    static auto* prototypes = new std::map<QString, rviz::Display*>();
+    static auto* prototypes = new std::map<QString, rviz::Display*>();  // never freed: see above
     auto found = prototypes->find(class_id);
     if (found == prototypes->end())
     {

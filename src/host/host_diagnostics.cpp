@@ -11,10 +11,11 @@
 #include <rviz/display.h>
 #include <rviz/display_group.h>
 #include <rviz/visualization_manager.h>
-#include <rviz/properties/status_list.h>
 #include <rviz/properties/status_property.h>
 
 #include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/ros_clock.h"
+#include "host_display_status.h"
 #include "host_projector_status.h"
 #include "host_session.h"
 
@@ -80,34 +81,21 @@ std::string displayLabel(const rviz::Display& display)
 }
 }  // namespace
 
-std::vector<DisplayStatusLine> displayStatusLines(const rviz::Display& display)
-{
-  std::vector<DisplayStatusLine> lines;
-  for (int i = 0; i < display.numChildren(); ++i)
-  {
-    const auto* list = qobject_cast<const rviz::StatusList*>(display.childAt(i));
-    if (!list)
-    {
-      continue;
-    }
-    for (int j = 0; j < list->numChildren(); ++j)
-    {
-      const auto* item = qobject_cast<const rviz::StatusProperty*>(list->childAt(j));
-      if (item)
-      {
-        lines.push_back({item->getName().toStdString(), static_cast<int>(item->getLevel()),
-                         item->getValue().toString().toStdString()});
-      }
-    }
-  }
-  return lines;
-}
-
 HostDiagnostics::HostDiagnostics(HostSession& session) : session_(session)
 {
   updater_.setHardwareID("projector_host");
   connect(&session_, &HostSession::loaded, this, &HostDiagnostics::rebuild);
-  connect(&timer_, &QTimer::timeout, this, [this] { updater_.update(); });
+  connect(&timer_, &QTimer::timeout, this, [this] {
+    // diagnostic_updater waits until ROS time reaches its next publish time: after a backward jump
+    // of ROS time (a bag loop) that time lies in the future, and it would publish nothing until the
+    // bag came back there. A jump publishes at once and starts its schedule anew.
+    if (epoch_.changed(RosClock::shared().tick()))
+    {
+      updater_.force_update();
+      return;
+    }
+    updater_.update();
+  });
   timer_.start(kPollMs);
   rebuild();
 }

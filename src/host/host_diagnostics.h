@@ -11,28 +11,14 @@
 #include <QObject>
 #include <QTimer>
 #include <diagnostic_updater/diagnostic_updater.h>
-#endif
 
-namespace rviz
-{
-class Display;
-}
+#include "rviz_projector/core/clock_policy.h"
+#endif
 
 namespace rviz_projector
 {
 class HostSession;
 struct HostLoadResult;
-
-/// One status line of an rviz display, as its Status list shows it.
-struct DisplayStatusLine
-{
-  std::string name;
-  int level = 0;  ///< rviz::StatusProperty::Level (Ok 0, Warn 1, Error 2)
-  std::string text;
-};
-
-/// The status lines `display` shows in rviz's Displays panel (its "Status" list).
-std::vector<DisplayStatusLine> displayStatusLines(const rviz::Display& display);
 
 class HostDiagnostics : public QObject
 {
@@ -55,6 +41,7 @@ private:
   diagnostic_updater::Updater updater_;
   std::vector<std::string> task_names_;
   QTimer timer_;
+  EpochWatch epoch_;  ///< of RosClock::shared(): a backward jump of ROS time publishes at once
   bool last_ok_ = true;
   std::string last_message_;
   std::vector<std::string> last_warnings_;

@@ -19,7 +19,7 @@ struct HostOptions
 {
   std::string config;  ///< the .rviz file
   bool watch = false;  ///< reload when the file changes
-  double keep_alive = 1.0;  ///< seconds; 0: no keep-alive frames (host_mode.h)
+  double keep_alive = 1.0;  ///< seconds; 0: no keep-alive frames (RenderPolicy, render_policy.h)
 };
 
 struct HostOptionsResult

@@ -7,7 +7,6 @@
 
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_camera_health.h"
-#include "host_diagnostics.h"
 
 namespace rviz_projector
 {

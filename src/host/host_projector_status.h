@@ -6,12 +6,13 @@
 #include <vector>
 
 #include <diagnostic_updater/DiagnosticStatusWrapper.h>
+
+#include "host_display_status.h"
 #endif
 
 namespace rviz_projector
 {
 class ProjectorCameraDisplay;
-struct DisplayStatusLine;
 
 /// Level: the worst of the display's statuses (Error when it is disabled or blanked by stale data
 /// is reported by its statuses too); message: the worst status line, or "projecting".

@@ -13,7 +13,7 @@
 #include <QTimer>
 #include <ros/ros.h>
 
-#include "rviz_projector/displays/host_mode.h"
+#include "rviz_projector/displays/render_policy.h"
 #include "host_diagnostics.h"
 #include "host_file_watcher.h"
 #include "host_options.h"
@@ -109,8 +109,8 @@ int main(int argc, char** argv)
   });
   ros_watch.start(100);
 
-  setHostMode(true);
-  setHostKeepAliveSeconds(parsed.options.keep_alive);
+  // The displays, created by pluginlib, take the process's policy and give it to their parts.
+  setProcessRenderPolicy(RenderPolicy::projectorHost(parsed.options.keep_alive));
   const QString config = QString::fromStdString(parsed.options.config);
   int status = kHostExitOk;
   {

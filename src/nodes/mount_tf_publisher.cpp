@@ -18,8 +18,8 @@
 
 #include <string>
 
-#include "rviz_projector/nodes/calibration_file.h"
-#include "rviz_projector/nodes/mount_file.h"
+#include "rviz_projector/calibration/calibration_file.h"
+#include "rviz_projector/calibration/mount_file.h"
 
 namespace
 {

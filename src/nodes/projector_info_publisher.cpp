@@ -17,7 +17,7 @@
 
 #include <string>
 
-#include "rviz_projector/nodes/calibration_file.h"
+#include "rviz_projector/calibration/calibration_file.h"
 
 namespace
 {

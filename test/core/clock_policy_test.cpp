@@ -50,14 +50,18 @@ TEST(ClockPolicy, BackwardJumpStartsANewEpochOnceAndKeepsTheRate)
   run(clock, ros, steady, 0.5, 2.0);
   EpochWatch follower;
   EXPECT_FALSE(follower.changed(clock)) << "the first look is no change";
+  EXPECT_FALSE(clock.sinceJump() < ClockPolicy::kJumpGrace) << "no jump yet";
   // Loop of the bag: back to 1000 s.
   EXPECT_TRUE(clock.update(1000.0, steady + 0.01));
   EXPECT_EQ(clock.epoch(), 1u);
   EXPECT_TRUE(follower.changed(clock));
   EXPECT_FALSE(follower.changed(clock)) << "one jump is one change";
   EXPECT_NEAR(clock.rate(), 0.5, 1e-6) << "the bag's rate is the same after the loop";
+  EXPECT_NEAR(clock.sinceJump(), 0.0, 1e-12);
+  clock.update(1000.3, steady + 0.31);
+  EXPECT_NEAR(clock.sinceJump(), 0.30, 1e-9) << "steady seconds since the jump";
   // Rounding of a simulated clock (under the tolerance) is no jump.
-  EXPECT_FALSE(clock.update(1000.0 - 0.5 * ClockPolicy::kBackwardTolerance, steady + 0.02));
+  EXPECT_FALSE(clock.update(1000.3 - 0.5 * ClockPolicy::kBackwardTolerance, steady + 0.32));
   EXPECT_EQ(clock.epoch(), 1u);
 }
 

@@ -1,9 +1,12 @@
 // ProjectionGate without rviz's window (Qt offscreen): Visibility ticks stay with their displays
 // when the list is reordered, a display above is removed or a new one added; the visibility
-// signature and the frame decision follow what is shown.
+// signature and the frame decision follow what is shown, under rviz's and projector_host's render
+// policy.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <memory>
+#include <thread>
 
 #include <QApplication>
 #include <ros/ros.h>
@@ -12,9 +15,11 @@
 #include <rviz/properties/display_group_visibility_property.h>
 
 #include "rviz_projector/displays/projection_gate.h"
+#include "rviz_projector/displays/render_policy.h"
 
 using rviz_projector::FrameState;
 using rviz_projector::ProjectionGate;
+using rviz_projector::RenderPolicy;
 
 namespace
 {
@@ -67,7 +72,7 @@ protected:
       group_->addDisplay(d);
     }
     // As ProjectorCameraDisplay::onInitialize: gate, then the property, then attach.
-    gate_ = std::make_unique<ProjectionGate>(group_.get(), projector_);
+    gate_ = std::make_unique<ProjectionGate>(group_.get(), projector_, RenderPolicy::rviz());
     visibility_ = new rviz::DisplayGroupVisibilityProperty(1u << 5, group_.get(), projector_, "Visibility", true, "",
                                                            projector_);
     gate_->attach(visibility_);
@@ -77,6 +82,29 @@ protected:
   {
     gate_.reset();
     group_.reset();  // deletes the displays (and the property, a child of the projector)
+  }
+
+  /// A second gate of the same projector under `policy`, with a Visibility of its own in which
+  /// the grid (a display of another package) is ticked and enabled.
+  std::unique_ptr<ProjectionGate> gateShowingTheGrid(const RenderPolicy& policy)
+  {
+    auto gate = std::make_unique<ProjectionGate>(group_.get(), projector_, policy);
+    auto* visibility = new rviz::DisplayGroupVisibilityProperty(1u << 6, group_.get(), projector_, "Visibility 2",
+                                                                true, "", projector_);
+    gate->attach(visibility);
+    gate->tickOf(grid_)->setValue(true);
+    enable(grid_);
+    return gate;
+  }
+
+  static FrameState someState()
+  {
+    FrameState s;
+    s.pose = {1, 2, 3, 1, 0, 0, 0};
+    s.changes = 7;
+    s.image = {0, 0, 1280, 800};
+    s.drawable = true;
+    return s;
   }
 
   std::unique_ptr<rviz::DisplayGroup> group_;
@@ -189,6 +217,51 @@ TEST_F(ProjectionGateTest, AFrameIsNeededOnlyWhenSomethingChanged)
   enable(grid_);
   EXPECT_TRUE(gate_->needsFrame(letterboxed));
   EXPECT_TRUE(gate_->needsFrame(letterboxed));
+}
+
+TEST_F(ProjectionGateTest, UnderRvizsPolicyAForeignDisplayRendersEveryTick)
+{
+  const std::unique_ptr<ProjectionGate> gate = gateShowingTheGrid(RenderPolicy::rviz());
+  ASSERT_TRUE(gate->showsForeignDisplays());
+  const FrameState s = someState();
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_TRUE(gate->needsFrame(s)) << "tick " << i;  // rviz's displays do not announce changes
+  }
+}
+
+TEST_F(ProjectionGateTest, UnderTheHostsPolicyAForeignDisplayRendersOnlyOnChangeOrKeepAlive)
+{
+  // No keep-alive: an unchanged state (the grid's scene graph included) renders nothing more.
+  const std::unique_ptr<ProjectionGate> quiet = gateShowingTheGrid(RenderPolicy::projectorHost(0.0));
+  ASSERT_TRUE(quiet->showsForeignDisplays());
+  FrameState s = someState();
+  EXPECT_TRUE(quiet->needsFrame(s));
+  EXPECT_FALSE(quiet->needsFrame(s));
+  EXPECT_FALSE(quiet->needsFrame(s));
+  s.changes = 8;  // a change of this package's displays still renders
+  EXPECT_TRUE(quiet->needsFrame(s));
+  EXPECT_FALSE(quiet->needsFrame(s));
+
+  // A keep-alive of 50 ms: one frame once the period passed since the last one.
+  const std::unique_ptr<ProjectionGate> kept = gateShowingTheGrid(RenderPolicy::projectorHost(0.05));
+  EXPECT_TRUE(kept->needsFrame(s));
+  EXPECT_FALSE(kept->needsFrame(s));
+  std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  EXPECT_TRUE(kept->needsFrame(s));
+  EXPECT_FALSE(kept->needsFrame(s));
+}
+
+TEST(RenderPolicy, TheProcessPolicyIsRvizsUntilTheHostSetsItsOwn)
+{
+  EXPECT_FALSE(rviz_projector::processRenderPolicy().host);
+  EXPECT_EQ(rviz_projector::processRenderPolicy().keep_alive_s, rviz_projector::kHostKeepAliveSeconds);
+  rviz_projector::setProcessRenderPolicy(RenderPolicy::projectorHost(2.5));
+  EXPECT_TRUE(rviz_projector::processRenderPolicy().host);
+  EXPECT_EQ(rviz_projector::processRenderPolicy().keep_alive_s, 2.5);
+  EXPECT_EQ(RenderPolicy::projectorHost(-1.0).keep_alive_s, 0.0);  // no negative period
+  rviz_projector::setProcessRenderPolicy(RenderPolicy::rviz());
+  EXPECT_FALSE(rviz_projector::processRenderPolicy().host);
 }
 
 int main(int argc, char** argv)

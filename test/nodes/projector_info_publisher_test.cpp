@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "rviz_projector/nodes/calibration_file.h"
+#include "rviz_projector/calibration/calibration_file.h"
 
 namespace
 {

@@ -294,6 +294,30 @@ TEST_F(ProjectedPathTest, ConfigRoundTripRestoresPropertiesAndArrows)
   }
 }
 
+TEST_F(ProjectedPathTest, ResetKeepsTheSubscriptionOfAnUnlatchedPlanner)
+{
+  // Issue 23 (found by the replay test): rviz resets every display when ROS time jumps back (a bag
+  // loop). Subscribing again there lost every plan published before the new connection stood: the
+  // first plan of each loop. An unlatched planner keeps its subscription; a latched plan comes
+  // back after a Reset by subscribing again.
+  ros::Publisher planner = nh_.advertise<nav_msgs::Path>("/test/unlatched_plan", 1, false);
+  display_->subProp("Topic")->setValue("/test/unlatched_plan");
+  ASSERT_TRUE(waitFor([&] { return planner.getNumSubscribers() > 0; }));
+  planner.publish(straightPath("odom", 3.05));
+  ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 6; }));
+  rviz_->manager()->getRootDisplayGroup()->reset();
+  ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.empty(); })) << "Reset clears the drawing";
+  planner.publish(straightPath("odom", 2.05));  // at once: no time to connect again
+  EXPECT_TRUE(waitFor([&] { return !display_->spacedPath().arrows.empty(); }))
+      << "the plan sent right after the Reset was lost";
+  // A latched plan comes back by itself after a Reset.
+  display_->subProp("Topic")->setValue(kTopic);
+  publishAndWait(straightPath("odom", 3.05), 6);
+  rviz_->manager()->getRootDisplayGroup()->reset();
+  EXPECT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 6 && received(); }))
+      << "the latched plan did not come back after Reset";
+}
+
 TEST_F(ProjectedPathTest, EmptyPathIsReportedAndClearsTheDrawing)
 {
   publishAndWait(straightPath("odom", 3.05), 6);

@@ -48,6 +48,11 @@ public:
   std::uint64_t epoch() const { return epoch_; }
   /// Whether any reading was given.
   bool started() const { return started_; }
+  /// Steady seconds since the last backward jump (infinity when there was none). Right after a
+  /// jump tf is empty (rviz clears its buffer) until the bag plays it again: a missing transform
+  /// then is expected, reported as a warning while this is below kJumpGrace, not as an error.
+  double sinceJump() const { return epoch_ == 0 ? HUGE_VAL : steady_now_ - jump_steady_; }
+  static constexpr double kJumpGrace = 1.0;
 
 private:
   bool started_ = false;
@@ -57,6 +62,7 @@ private:
   double anchor_steady_ = 0.0;
   double rate_ = 1.0;
   double fixed_rate_ = std::nan("");
+  double jump_steady_ = 0.0;  ///< steady time of the last backward jump
   std::uint64_t epoch_ = 0;
 };
 

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "rviz_projector/displays/render_policy.h"
+
 namespace rviz
 {
 class DisplayContext;
@@ -20,6 +22,8 @@ bool isSoftwareRenderer(const std::string& gl_renderer);
 /// A warning for the user when the main view multisamples (`fsaa` samples, 0 or 1 = none) on a
 /// software renderer; empty when it does not.
 std::string mainViewCostWarning(unsigned int fsaa, const std::string& gl_renderer);
-/// The same for rviz's running main view (empty when rviz is embedded without one).
-std::string mainViewCostWarning(rviz::DisplayContext& context);
+/// The same for rviz's running main view (empty when rviz is embedded without one, and always
+/// under projector_host's `policy`: it renders no main view). The owner gives the policy (a
+/// display: the process's policy, the default).
+std::string mainViewCostWarning(rviz::DisplayContext& context, const RenderPolicy& policy = processRenderPolicy());
 }  // namespace rviz_projector

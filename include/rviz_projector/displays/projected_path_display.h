@@ -81,7 +81,8 @@ protected:
   /// would clear it until the planner publishes again, which a latched plan never does).
   void fixedFrameChanged() override;
   /// Reports a path whose frame cannot be transformed (yet) to the fixed frame.
-  void checkFrame(const nav_msgs::Path::ConstPtr& msg);
+  /// Sees every message before the tf filter (and whether its publisher latches).
+  void checkFrame(const ros::MessageEvent<nav_msgs::Path const>& event);
 
 private Q_SLOTS:
   /// Handles this display's own messages (its private queue), promptly and outside rviz's update.
@@ -96,6 +97,9 @@ private Q_SLOTS:
   void updateStateTopic();
 
 private:
+  /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
+  static constexpr double kArrowLift = 0.001;
+
   SpacingParameters spacingParameters() const;
   /// Re-spaces the last path (fixed-frame points) and rebuilds the meshes.
   void rebuild();
@@ -105,6 +109,8 @@ private:
   bool cuesActive() const;
   /// The Marching warning when Marching is on in Paper mode.
   void checkMarchingMode();
+  /// ROS time now, from the clock every display shares (RosClock): the cue timelines' time.
+  static ros::Time cueTime();
   /// Draws the cues for `now`; `force`: upload even if the picture looks the same (new colours).
   void drawCues(const ros::Time& now, bool force);
   void showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown);
@@ -132,6 +138,7 @@ private:
   SpacedPath empty_;
   std::vector<Vec2> floor_points_;  // last path, in the fixed frame
   nav_msgs::Path::ConstPtr last_msg_;  // last path drawn (null: none yet); floor_points_ hold it
+  bool latched_publisher_ = false;  ///< the last path came from a latched publisher (Reset subscribes again)
   std::chrono::steady_clock::time_point last_arrival_;  // when last_msg_ arrived (steady wall clock)
   std::size_t dropped_poses_ = 0;
   PathTriangles triangles_;  // buffers kept between paths

@@ -13,6 +13,7 @@
 #include <QObject>
 
 #include "rviz_projector/core/letterbox.h"
+#include "rviz_projector/displays/render_policy.h"
 #endif
 
 namespace rviz
@@ -33,7 +34,7 @@ struct FrameState
   std::uint64_t visibility = 0;  ///< ProjectionGate::visibilitySignature()
   PixelRect image;               ///< where the image is drawn in the window
   bool drawable = false;         ///< lens and pose available
-  std::uint64_t foreign_scene = 0;  ///< host mode: ProjectionGate::foreignSceneSignature() (set by the gate)
+  std::uint64_t foreign_scene = 0;  ///< host policy: ProjectionGate::foreignSceneSignature() (set by the gate)
   bool operator==(const FrameState& o) const;
 };
 
@@ -43,15 +44,18 @@ class ProjectionGate : public QObject
 public:
   /// Watches `group` (rviz's root display group) for `owner`. Create it before the Visibility
   /// property: it must hear a display's removal before the property forgets that display's tick.
-  ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner);
+  /// `policy` says how displays of other packages are judged (needsFrame()); the owner gives it (a
+  /// display: the process's policy, the default).
+  ProjectionGate(rviz::DisplayGroup* group, rviz::Display* owner,
+                 const RenderPolicy& policy = processRenderPolicy());
 
   /// The owner's Visibility property, once created; existing displays get their default ticks.
   void attach(rviz::DisplayGroupVisibilityProperty* visibility);
 
   /// Whether `state` needs a new frame: it differs from the last frame rendered, or the view was
   /// invalidated, or the view shows displays that do not announce their changes (not from this
-  /// package). Those force a frame every tick in rviz; in projector_host (host_mode.h) only when
-  /// their scene graph changed or the keep-alive period passed.
+  /// package). Those force a frame every tick under rviz's policy; under projector_host's
+  /// (RenderPolicy::host) only when their scene graph changed or its keep-alive period passed.
   /// When true, `state` is recorded as rendered.
   bool needsFrame(const FrameState& state);
   /// The next frame renders whatever the state (a new window, a read-back).
@@ -76,6 +80,7 @@ private Q_SLOTS:
 private:
   rviz::DisplayGroup* group_;
   rviz::Display* owner_;
+  RenderPolicy policy_;
   rviz::DisplayGroupVisibilityProperty* visibility_ = nullptr;
   /// Ticks of displays taken out of the group: a display moved in the list comes back with its tick.
   std::map<const QObject*, bool> taken_out_;

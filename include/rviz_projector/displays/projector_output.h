@@ -18,6 +18,7 @@
 
 #include "rviz_projector/core/letterbox.h"
 #include "rviz_projector/core/screen_choice.h"
+#include "rviz_projector/displays/render_policy.h"
 #endif
 
 namespace Ogre
@@ -64,8 +65,10 @@ class ProjectorOutput : public QObject
   Q_OBJECT
 public:
   /// `camera` draws into the viewport; `listener` hears the render window's updates (both outlive
-  /// this object).
-  ProjectorOutput(const QString& title, Ogre::Camera* camera, Ogre::RenderTargetListener* listener);
+  /// this object). `policy` says whether an rviz window may need the screen (present()); the owner
+  /// gives it (a display: the process's policy, the default).
+  ProjectorOutput(const QString& title, Ogre::Camera* camera, Ogre::RenderTargetListener* listener,
+                  const RenderPolicy& policy = processRenderPolicy());
   ~ProjectorOutput() override;
 
   /// Creates the window if needed (again when frame or multisampling must change), chooses the
@@ -136,6 +139,7 @@ private:
   QString title_;
   Ogre::Camera* camera_;
   Ogre::RenderTargetListener* listener_;
+  RenderPolicy policy_;
   std::unique_ptr<ProjectorOutputWindow> window_;
   Ogre::Viewport* viewport_ = nullptr;
   Ogre::ColourValue background_ = Ogre::ColourValue::Black;
@@ -144,7 +148,7 @@ private:
   int window_width_ = 0;
   int window_height_ = 0;
   std::string screen_name_;  ///< screen the window is on (empty while hidden)
-  bool seen_several_screens_ = false;  ///< host mode: more than one screen was connected at some point
+  bool seen_several_screens_ = false;  ///< host policy: more than one screen was connected at some point
   QRect windowed_geometry_;
   QRect placed_geometry_;  ///< the windowed geometry last set here (anything else is the user's)
   bool repaint_requested_ = false;  ///< the user's windowed geometry, kept across full-screen toggles

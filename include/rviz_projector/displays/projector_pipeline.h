@@ -44,6 +44,9 @@ struct PoseStep
   ProjectorPose pose;                 ///< the pose to render from (motion compensation applied)
   bool transform_status_changed = false;  ///< show "Transform" anew: OK, or `transform_problem`
   std::string transform_problem;
+  /// The problem is tf still missing within ClockPolicy::kJumpGrace after a backward jump of ROS
+  /// time (rviz cleared its buffer; the bag plays it again): a warning, not an error.
+  bool transform_problem_expected = false;
   bool transform_status_gone = false; ///< no lens any more: the Transform status goes
   MotionReport motion;                ///< the Motion compensation status / Prediction line (when ok)
 };

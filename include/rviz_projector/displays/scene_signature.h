@@ -2,7 +2,7 @@
 // attached objects' visibility and bounds. projector_host uses it to see whether displays of other
 // packages (which do not announce their changes to this package) moved or changed since the last
 // projector frame. Content that changes inside unchanged bounds is not seen here: projector_host
-// counts those displays' render requests instead (host_mode.h).
+// renders a keep-alive frame for it (RenderPolicy::keep_alive_s, render_policy.h).
 #pragma once
 
 #include <cstdint>

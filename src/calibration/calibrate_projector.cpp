@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "rviz_projector/nodes/calibrate_projector_options.h"
-#include "rviz_projector/nodes/calibration_run.h"
-#include "rviz_projector/nodes/clicked_points.h"
+#include "rviz_projector/calibration/calibrate_projector_options.h"
+#include "rviz_projector/calibration/calibration_run.h"
+#include "rviz_projector/calibration/clicked_points.h"
 
 int main(int argc, char** argv)
 {

@@ -7,7 +7,7 @@
 
 #include <ostream>
 
-#include "rviz_projector/nodes/calibrate_projector_options.h"
+#include "rviz_projector/calibration/calibrate_projector_options.h"
 
 namespace rviz_projector
 {

@@ -1,6 +1,6 @@
-#include "rviz_projector/nodes/clicked_points.h"
+#include "rviz_projector/calibration/clicked_points.h"
 
-#include "rviz_projector/nodes/number_format.h"
+#include "rviz_projector/calibration/number_format.h"
 
 #include <cmath>
 #include <deque>
@@ -12,7 +12,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
-#include "rviz_projector/nodes/calibration_run.h"
+#include "rviz_projector/calibration/calibration_run.h"
 
 namespace rviz_projector
 {

@@ -1,6 +1,6 @@
-#include "rviz_projector/nodes/calibration_points_file.h"
+#include "rviz_projector/calibration/calibration_points_file.h"
 
-#include "rviz_projector/nodes/number_format.h"
+#include "rviz_projector/calibration/number_format.h"
 
 #include <cmath>
 #include <cstdio>
@@ -11,7 +11,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "rviz_projector/nodes/calibration_file_yaml.h"
+#include "rviz_projector/calibration/calibration_file_yaml.h"
 
 namespace rviz_projector
 {

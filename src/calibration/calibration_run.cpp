@@ -1,14 +1,14 @@
-#include "rviz_projector/nodes/calibration_run.h"
+#include "rviz_projector/calibration/calibration_run.h"
 
 #include <array>
 #include <sstream>
 
 #include <camera_calibration_parsers/parse_yml.h>
 
+#include "rviz_projector/calibration/calibration_report.h"
+#include "rviz_projector/calibration/mount_file.h"
+#include "rviz_projector/calibration/number_format.h"
 #include "rviz_projector/core/mount_solver.h"
-#include "rviz_projector/nodes/calibration_report.h"
-#include "rviz_projector/nodes/mount_file.h"
-#include "rviz_projector/nodes/number_format.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector

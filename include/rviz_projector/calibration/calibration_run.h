@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "rviz_projector/calibration/calibrate_projector_options.h"
+#include "rviz_projector/calibration/calibration_file.h"
+#include "rviz_projector/calibration/calibration_points_file.h"
 #include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/core/pinhole_model.h"
-#include "rviz_projector/nodes/calibrate_projector_options.h"
-#include "rviz_projector/nodes/calibration_file.h"
-#include "rviz_projector/nodes/calibration_points_file.h"
 
 namespace rviz_projector
 {

@@ -1,4 +1,4 @@
-#include "rviz_projector/nodes/calibration_file_yaml.h"
+#include "rviz_projector/calibration/calibration_file_yaml.h"
 
 #include <cmath>
 #include <sstream>

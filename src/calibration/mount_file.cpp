@@ -1,13 +1,13 @@
-#include "rviz_projector/nodes/mount_file.h"
+#include "rviz_projector/calibration/mount_file.h"
 
-#include "rviz_projector/nodes/number_format.h"
+#include "rviz_projector/calibration/number_format.h"
 
 #include <fstream>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
-#include "rviz_projector/nodes/calibration_file_yaml.h"
+#include "rviz_projector/calibration/calibration_file_yaml.h"
 
 namespace rviz_projector
 {

@@ -1,4 +1,4 @@
-#include "rviz_projector/nodes/calibration_file.h"
+#include "rviz_projector/calibration/calibration_file.h"
 
 #include "rviz_projector/ros/ros_conversions.h"
 
@@ -16,7 +16,7 @@
 #include <ros/package.h>
 #include <yaml-cpp/yaml.h>
 
-#include "rviz_projector/nodes/calibration_file_yaml.h"
+#include "rviz_projector/calibration/calibration_file_yaml.h"
 
 #include "rviz_projector/core/pinhole_model.h"
 

@@ -1,4 +1,4 @@
-#include "rviz_projector/nodes/calibrate_projector_options.h"
+#include "rviz_projector/calibration/calibrate_projector_options.h"
 
 #include <cstdlib>
 

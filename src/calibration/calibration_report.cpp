@@ -1,6 +1,6 @@
-#include "rviz_projector/nodes/calibration_report.h"
+#include "rviz_projector/calibration/calibration_report.h"
 
-#include "rviz_projector/nodes/number_format.h"
+#include "rviz_projector/calibration/number_format.h"
 
 #include <cmath>
 #include <iomanip>

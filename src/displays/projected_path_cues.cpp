@@ -1,0 +1,160 @@
+// ProjectedPathDisplay, its cue animation (the other half, projected_path_display.cpp: messages,
+// spacing, drawing without cues): the cue settings and State topic, the cue timeline advanced for
+// each frame's ROS time (ProjectionAnimation: the projector ticks it before a frame, rviz's update
+// for the main view), drawn only when the picture changed.
+#include <algorithm>
+#include <utility>
+
+#include <rviz/display_context.h>
+#include <rviz/frame_manager.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/enum_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/status_property.h>
+#include <rviz/properties/tf_frame_property.h>
+
+#include "rviz_projector/core/marching.h"
+#include "rviz_projector/displays/floor_mesh.h"
+#include "rviz_projector/displays/path_cue_properties.h"
+#include "rviz_projector/displays/projected_path_display.h"
+#include "rviz_projector/displays/projection_change_notifier.h"
+#include "rviz_projector/displays/ros_clock.h"
+
+namespace rviz_projector
+{
+ros::Time ProjectedPathDisplay::cueTime()
+{
+  // The cue timelines run on ROS time (a bag at half rate animates at half speed): the shared clock.
+  return ros::Time(std::max(0.0, RosClock::shared().tick().rosNow()));
+}
+
+void ProjectedPathDisplay::checkMarchingMode()
+{
+  if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
+  {
+    setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
+  }
+  else
+  {
+    deleteStatus("Marching");
+  }
+}
+
+bool ProjectedPathDisplay::cuesActive() const
+{
+  return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_source_.subscribed();
+}
+
+void ProjectedPathDisplay::updateCues()
+{
+  cue_settings_ = cue_properties_->settings();
+  cue_source_.setParameters(cue_properties_->goalParameters());
+  checkMarchingMode();
+  if (!cuesActive() && arrow_mesh_)
+  {
+    robot_status_shown_ = CueStatus();
+    deleteStatus("Robot");
+  }
+  rebuild();  // re-spaced (a marching phase) and drawn with the new settings at once
+}
+
+void ProjectedPathDisplay::updateStateTopic()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  cue_source_.subscribe(update_nh_, cue_properties_->state_topic->getStdString());
+  state_status_shown_ = CueStatus();
+  deleteStatus("State");
+  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);  // e.g. an invalid topic name
+  updateCues();
+}
+
+void ProjectedPathDisplay::update(float /*wall_dt*/, float /*ros_dt*/)
+{
+  advance(cueTime());  // the main view animates without a projector too
+}
+
+void ProjectedPathDisplay::advance(const ros::Time& now)
+{
+  if (!arrow_mesh_ || !isEnabled() || !last_msg_ || !cuesActive() || now == last_advance_)
+  {
+    return;  // two projectors tick at the same time: drawn once
+  }
+  drawCues(now, false);
+}
+
+void ProjectedPathDisplay::showCueStatus(const QString& name, const CueStatus& status, CueStatus& shown)
+{
+  if (status.level == shown.level && status.text == shown.text)
+  {
+    return;  // statuses change rarely; this runs at the frame rate
+  }
+  shown = status;
+  if (status.text.empty())
+  {
+    deleteStatus(name);
+    return;
+  }
+  const rviz::StatusProperty::Level level = status.level == CueStatus::Level::Ok     ? rviz::StatusProperty::Ok
+                                            : status.level == CueStatus::Level::Warn ? rviz::StatusProperty::Warn
+                                                                                     : rviz::StatusProperty::Error;
+  setStatus(level, name, QString::fromStdString(status.text));
+}
+
+void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
+{
+  last_advance_ = now;
+  const PathCueInput input = cue_source_.inputAt(now, *context_->getFrameManager(),
+                                                 cue_properties_->robot_frame->getFrameStd(),
+                                                 cue_settings_.needsRobot());
+  showCueStatus("Robot", cue_source_.robotStatus(), robot_status_shown_);
+  showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);
+  if (!last_msg_)
+  {
+    return;
+  }
+  const SpacingParameters& parameters = spacer_.parameters();
+  // Marching needs Exact spacing (a Marching warning says so otherwise): no re-spacing per frame then.
+  const double phase = cue_settings_.marching && parameters.mode == SpacingMode::Exact
+                           ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing)
+                           : 0.0;
+  if (phase != spaced_phase_)
+  {
+    spaced_ = &spacer_.space(floor_points_, phase);
+    spaced_phase_ = phase;
+  }
+  cue_next_.build(floor_points_, *spaced_, parameters, cue_settings_, input);
+  const auto same = [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Vec2& p, const Vec2& q) {
+             return p.x == q.x && p.y == q.y;
+           });
+  };
+  if (!force && input.goal.colour == cue_colour_drawn_ && cue_next_.cross() == cue_drawn_.cross() &&
+      cue_next_.destinationAlpha() == cue_drawn_.destinationAlpha() &&
+      cue_next_.arrowAlpha() == cue_drawn_.arrowAlpha() && same(cue_next_.arrows(), cue_drawn_.arrows()) &&
+      same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()))
+  {
+    return;  // the projector already shows exactly this: no upload, no frame
+  }
+  std::swap(cue_next_, cue_drawn_);
+  cue_colour_drawn_ = input.goal.colour;
+  const double height = height_property_->getFloat();
+  const float alpha = alpha_property_->getFloat();
+  Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
+  arrow_colour.a = alpha;
+  Ogre::ColourValue destination_colour =
+      input.goal.colour == GoalCueFrame::Colour::Failed      ? cue_properties_->failed_color->getOgreColor()
+      : input.goal.colour == GoalCueFrame::Colour::Succeeded ? cue_properties_->succeeded_color->getOgreColor()
+                                                              : circle_color_property_->getOgreColor();
+  destination_colour.a = alpha * cue_drawn_.destinationAlpha();
+  arrow_mesh_->setFlatTriangles(cue_drawn_.arrows(), cue_drawn_.arrowAlpha(), height + kArrowLift, arrow_colour);
+  circle_mesh_->setFlatTriangles(cue_drawn_.destination(), height, destination_colour);
+  glyph_mesh_->setFlatTriangles(cue_drawn_.glyph(), height + kArrowLift, arrow_colour);
+  ++mesh_builds_;
+  ProjectionChangeNotifier::notify();
+  context_->queueRender();
+}
+
+}  // namespace rviz_projector
