@@ -284,9 +284,9 @@ void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path con
   if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
   {
     // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
-    const bool expected = RosClock::shared().policy().sinceJump() < ClockPolicy::kJumpGrace;
+    const bool expected = RosClock::shared().policy().justJumpedBack();
     setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
-              QString(expected ? "Waiting for tf after ROS time jumped back (a bag loop?): " : "") +
+              QString(expected ? kWaitingForTfAfterJump : "") +
                   QString::fromStdString(error) + " (the path is drawn once the transform is available)");
   }
 }

@@ -300,7 +300,7 @@ void ProjectorCameraDisplay::onFootprintPropertyChanged()
 
 void ProjectorCameraDisplay::updateFootprintVisible()
 {
-  overlay_->setFootprintVisible(isEnabled() && props_.footprint->getBool() && hasLens() && pose_ok_);
+  overlay_->setFootprintVisible(isEnabled() && props_.footprint->getBool() && hasLens() && pipeline_.poseOk());
 }
 
 void ProjectorCameraDisplay::updateTestPattern()

@@ -90,7 +90,7 @@ void ProjectorCameraDisplay::showMotion(const MotionReport& report)
 
 void ProjectorCameraDisplay::updateFootprint()
 {
-  if (!hasLens() || !pose_ok_)
+  if (!hasLens() || !pipeline_.poseOk())
   {
     overlay_->setFootprintVisible(false);
     return;
@@ -112,7 +112,7 @@ bool ProjectorCameraDisplay::prepareFrame()
   {
     return false;
   }
-  pose_ok_ = updateCameraPose();  // false without a lens (its Transform status goes)
+  updateCameraPose();  // pipeline_.poseOk(): false without a lens (its Transform status goes)
   updateFootprint();
   crosshairs_shown_ = updateCrosshairs();
   if (output_->fitViewport(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0))
@@ -137,7 +137,7 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   {
     viewport->setCamera(camera);
   }
-  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : hasLens() && pose_ok_ ? vis_bit_ : 0u);
+  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : hasLens() && pipeline_.poseOk() ? vis_bit_ : 0u);
 }
 
 void ProjectorCameraDisplay::onFrameTimer()
@@ -187,7 +187,7 @@ void ProjectorCameraDisplay::renderNow()
   state.changes = ProjectionChangeCounter::value() + own_changes_;
   state.visibility = gate_->visibilitySignature();
   state.image = output_->imageRect();
-  state.drawable = hasLens() && (pose_ok_ || crosshairs_shown_);
+  state.drawable = hasLens() && (pipeline_.poseOk() || crosshairs_shown_);
   if (output_->takeRepaintRequest())
   {
     gate_->invalidate();  // exposed again: the window's content must be drawn anew

@@ -27,7 +27,7 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
   h.tf_age_s = hasLens() ? pipeline_.poseFollower().tfAge() : kNone;  // the pose is looked up only with a lens
   h.camera_info_age_s = pipeline_.lensSource().secondsSinceInfo();
   h.camera_info_messages = pipeline_.lensSource().messagesReceived();
-  h.pose_ok = hasLens() && pose_ok_;
+  h.pose_ok = hasLens() && pipeline_.poseOk();
   if (output_)
   {
     h.window_shown = output_->isShown();
@@ -50,7 +50,7 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
   {
     h.blank_reason = status("CameraInfo");
   }
-  else if (!pose_ok_ && !crosshairs_shown_)
+  else if (!pipeline_.poseOk() && !crosshairs_shown_)
   {
     h.blank_reason = status("Transform");
   }

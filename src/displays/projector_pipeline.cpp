@@ -1,5 +1,7 @@
 #include "rviz_projector/displays/projector_pipeline.h"
 
+#include "rviz_projector/displays/ros_clock.h"
+
 #include <tf2_ros/buffer.h>
 #include <utility>
 
@@ -87,11 +89,11 @@ PoseStep ProjectorPipeline::followPose(const PoseInput& in, const ClockPolicy& c
   // before the jump (rviz has not cleared it yet): expected for a moment, a warning.
   const ProjectorPose& pose = pose_.pose();
   step.transform_problem_expected =
-      !step.ok && clock.sinceJump() < ClockPolicy::kJumpGrace &&
+      !step.ok && clock.justJumpedBack() &&
       (pose.state == ProjectorPose::NoTransform || (pose.state == ProjectorPose::Stale && pose.age < 0.0));
   if (step.transform_problem_expected)
   {
-    step.transform_problem = "Waiting for tf after ROS time jumped back (a bag loop?): " + step.transform_problem;
+    step.transform_problem = kWaitingForTfAfterJump + step.transform_problem;
   }
   if (step.ok)
   {

@@ -267,10 +267,10 @@ TEST(CalibrateProjectorSolve, OutlierIsNamedAndRejected)
   expectMount(kMount, values, 1e-5);
 }
 
-TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
+/// 9 floor points and 3 off the floor (boxes 0.3 .. 0.5 m high), exact, written as a points file:
+/// enough for --fit-intrinsics.
+void writeFloorAndBoxPoints(const std::string& path)
 {
-  Dir dir;
-  // 9 floor points and 3 off the floor (boxes 0.3 .. 0.5 m high), exact; measured to 1 mm.
   std::vector<TestPoint> points = floorPoints(kMount);
   image_geometry::PinholeCameraModel lens;
   ASSERT_TRUE(rviz_projector_test::lensFromFile(kPa503w, lens));
@@ -282,7 +282,13 @@ TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
                                                   p.world[2], p.world));
     points.push_back(p);
   }
-  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link", points));
+  rviz_projector_test::writeFile(path, rviz_projector_test::pointsYaml("base_link", points));
+}
+
+TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
+{
+  Dir dir;
+  ASSERT_NO_FATAL_FAILURE(writeFloorAndBoxPoints(dir.file("points.yaml")));
   const auto result =
       calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--fit-intrinsics", "--tape-error",
                  "1", "--output-calibration", dir.file("cal.yaml"), "--output", dir.file("mount.yaml")});
@@ -325,18 +331,7 @@ TEST(CalibrateProjectorSolve, OutputFilesAreWrittenAllOrNothing)
 {
   // Issue 23, defect 5: mount.yaml used to be written before the calibration file failed.
   Dir dir;
-  std::vector<TestPoint> points = floorPoints(kMount);
-  image_geometry::PinholeCameraModel lens;
-  ASSERT_TRUE(rviz_projector_test::lensFromFile(kPa503w, lens));
-  const std::vector<TestPoint> boxes = {{10, 384, 240, {0, 0, 0.4}}, {11, 896, 560, {0, 0, 0.3}},
-                                        {12, 640, 160, {0, 0, 0.5}}};
-  for (TestPoint p : boxes)
-  {
-    ASSERT_TRUE(rviz_projector_test::pixelOnPlane(lens, rviz_projector_test::opticalPoseByHand(kMount), p.u, p.v,
-                                                  p.world[2], p.world));
-    points.push_back(p);
-  }
-  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link", points));
+  ASSERT_NO_FATAL_FAILURE(writeFloorAndBoxPoints(dir.file("points.yaml")));
   const auto result = calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--fit-intrinsics",
                                  "--tape-error", "1", "--output", dir.file("mount.yaml"), "--output-calibration",
                                  dir.file("no_such_directory/cal.yaml")});

@@ -53,6 +53,8 @@ public:
   /// then is expected, reported as a warning while this is below kJumpGrace, not as an error.
   double sinceJump() const { return epoch_ == 0 ? HUGE_VAL : steady_now_ - jump_steady_; }
   static constexpr double kJumpGrace = 1.0;
+  /// Within kJumpGrace of a backward jump: missing tf is expected, a warning.
+  bool justJumpedBack() const { return sinceJump() < kJumpGrace; }
 
 private:
   bool started_ = false;

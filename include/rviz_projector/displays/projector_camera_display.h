@@ -176,7 +176,6 @@ private:
 
   ProjectorPipeline pipeline_;  ///< lens, projector frame, clock, pose and motion: the per-frame inputs
   std::pair<std::uint32_t, std::uint32_t> shown_size_{0, 0};  ///< image size the window was laid out for
-  bool pose_ok_ = false;
   QString fixed_frame_shown_;    ///< the fixed frame fixed_frame_std_ was made from
   std::string fixed_frame_std_;
 

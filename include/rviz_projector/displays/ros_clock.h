@@ -8,6 +8,9 @@
 
 namespace rviz_projector
 {
+/// How a status starts when tf is missing just after a backward jump (ClockPolicy::justJumpedBack).
+constexpr const char* kWaitingForTfAfterJump = "Waiting for tf after ROS time jumped back (a bag loop?): ";
+
 class RosClock
 {
 public:
