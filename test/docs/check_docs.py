@@ -239,6 +239,15 @@ def strip_comments(code):
     return "".join(out)
 
 
+def after_string(text, i):
+    """Index just past the string or character literal that opens at text[i] (escapes skipped)."""
+    quote = text[i]
+    j = i + 1
+    while j < len(text) and text[j] != quote:
+        j += 2 if text[j] == "\\" else 1
+    return j + 1
+
+
 def matching(code, open_index, open_char="(", close_char=")"):
     """Index of the bracket closing the one at open_index (strings skipped)."""
     depth = 0
@@ -246,10 +255,7 @@ def matching(code, open_index, open_char="(", close_char=")"):
     while i < len(code):
         c = code[i]
         if c in "\"'":
-            j = i + 1
-            while j < len(code) and code[j] != c:
-                j += 2 if code[j] == "\\" else 1
-            i = j + 1
+            i = after_string(code, i)
             continue
         if c == open_char:
             depth += 1
@@ -267,10 +273,7 @@ def split_args(text):
     while i < len(text):
         c = text[i]
         if c in "\"'":
-            j = i + 1
-            while j < len(text) and text[j] != c:
-                j += 2 if text[j] == "\\" else 1
-            i = j + 1
+            i = after_string(text, i)
             continue
         if c in "([{<":
             # '<' only opens a template argument list right after a name (static_cast<float>)
