@@ -1,6 +1,7 @@
 #include "rviz_projector/calibration/calibration_file_yaml.h"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace rviz_projector
@@ -39,6 +40,16 @@ std::string loadYamlFile(const std::string& path, YAML::Node& doc)
     return std::string("cannot be read as YAML: ") + e.what();
   }
   return "";
+}
+
+std::string readYamlFile(const std::string& path, YAML::Node& doc)
+{
+  if (!std::ifstream(path).good())
+  {
+    return path + ": cannot be read (no such file, or no permission)";
+  }
+  const std::string yaml_error = loadYamlFile(path, doc);
+  return yaml_error.empty() ? yaml_error : path + ": " + yaml_error;
 }
 
 bool yamlNumber(const YAML::Node& node, double& value)

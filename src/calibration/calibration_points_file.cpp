@@ -246,15 +246,10 @@ std::string readCalibrationPoints(const std::string& path, const std::vector<Cro
                                   const std::string& pattern_name, CalibrationPoints& out)
 {
   out = CalibrationPoints();
-  if (!std::ifstream(path).good())
-  {
-    return path + ": cannot be read (no such file, or no permission)";
-  }
   YAML::Node doc;
-  const std::string yaml_error = loadYamlFile(path, doc);
-  if (!yaml_error.empty())
+  if (const std::string problem = readYamlFile(path, doc); !problem.empty())
   {
-    return path + ": " + yaml_error;
+    return problem;
   }
   const std::string error = readDocument(doc, pattern, pattern_name, out);
   if (!error.empty())

@@ -96,15 +96,10 @@ std::string mountFileYaml(const std::string& parent_frame, const MountSolution& 
 std::string readMountFile(const std::string& path, MountFile& out)
 {
   out = MountFile();
-  if (!std::ifstream(path).good())
-  {
-    return path + ": cannot be read (no such file, or no permission)";
-  }
   YAML::Node doc;
-  const std::string yaml_error = loadYamlFile(path, doc);
-  if (!yaml_error.empty())
+  if (const std::string problem = readYamlFile(path, doc); !problem.empty())
   {
-    return path + ": " + yaml_error;
+    return problem;
   }
   const std::string error = readDocument(doc, out);
   if (!error.empty())

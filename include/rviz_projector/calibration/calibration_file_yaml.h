@@ -14,6 +14,9 @@ std::string describeYamlNode(const YAML::Node& node);
 /// Parses the file into `doc`: "" on success, otherwise "not valid YAML: line L, column C: ..." or
 /// "cannot be read as YAML: ..." (without the path: the caller prefixes it).
 std::string loadYamlFile(const std::string& path, YAML::Node& doc);
+/// The points and mount files' reader: "" on success, otherwise the problem with the path in front:
+/// "<path>: cannot be read (no such file, or no permission)" or "<path>: " + loadYamlFile's error.
+std::string readYamlFile(const std::string& path, YAML::Node& doc);
 
 /// The node as a number (a scalar yaml-cpp converts to double; .nan/.inf included); false otherwise.
 bool yamlNumber(const YAML::Node& node, double& value);
