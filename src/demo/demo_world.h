@@ -14,14 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include "rviz_projector/core/angle.h"
+
 namespace rviz_projector_demo
 {
 constexpr double kPi = 3.14159265358979323846;
-
-inline double wrapAngle(double angle)
-{
-  return std::atan2(std::sin(angle), std::cos(angle));
-}
 
 // ---------------------------------------------------------------------------------------------
 // Small 2D geometry helpers
@@ -304,7 +301,7 @@ public:
     const double mid_yaw = pose_.yaw + 0.5 * w_ * dt;
     pose_.x += v_ * std::cos(mid_yaw) * dt;
     pose_.y += v_ * std::sin(mid_yaw) * dt;
-    pose_.yaw = wrapAngle(pose_.yaw + w_ * dt);
+    pose_.yaw = rviz_projector::wrapToPi(pose_.yaw + w_ * dt);
   }
 
 private:
@@ -324,7 +321,7 @@ private:
       return;
     }
 
-    const double alpha = wrapAngle(std::atan2(to_target.y, to_target.x) - pose_.yaw);
+    const double alpha = rviz_projector::wrapToPi(std::atan2(to_target.y, to_target.x) - pose_.yaw);
     const double curvature = 2.0 * std::sin(alpha) / target_distance;  // pure pursuit arc
     const double heading_factor = std::max(0.0, std::cos(alpha));
 

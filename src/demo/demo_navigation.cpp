@@ -45,12 +45,14 @@
 #include <visualization_msgs/Marker.h>
 
 #include "demo_world.h"
+#include "ros_timer_restarter.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -145,6 +147,8 @@ public:
     replan_timer_ = nh_.createTimer(ros::Duration(1.0 / replan_rate), &DemoNavigation::onReplan, this);
     footprint_timer_ = nh_.createTimer(ros::Duration(0.1), &DemoNavigation::onFootprint, this);
     obstacle_timer_ = nh_.createTimer(ros::Duration(1.0), &DemoNavigation::onObstacle, this);
+    restarter_.reset(new RosTimerRestarter(
+        nh_, {&control_timer_, &replan_timer_, &footprint_timer_, &obstacle_timer_}, "demo_navigation"));
   }
 
 private:
@@ -496,6 +500,7 @@ private:
   ros::Timer replan_timer_;
   ros::Timer footprint_timer_;
   ros::Timer obstacle_timer_;
+  std::unique_ptr<RosTimerRestarter> restarter_;  // see ros_timer_restarter.h
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 //           /demo/pedestrian  visualization_msgs/MarkerArray (a body and a head, map frame) for the main view
 // tf:       static base_link -> base_laser
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rviz_projector/core/scan_simulation.h"
+#include "ros_timer_restarter.h"
 
 namespace
 {
@@ -75,6 +77,7 @@ public:
     mount.transform.rotation.w = 1.0;
     static_broadcaster_.sendTransform(mount);
     timer_ = nh_.createTimer(ros::Duration(1.0 / rate), &DemoPedestrian::step, this);
+    restarter_.reset(new rviz_projector_demo::RosTimerRestarter(nh_, {&timer_}, "demo_pedestrian"));
   }
 
 private:
@@ -160,6 +163,7 @@ private:
   ros::Publisher scan_pub_;
   ros::Publisher marker_pub_;
   ros::Timer timer_;
+  std::unique_ptr<rviz_projector_demo::RosTimerRestarter> restarter_;  // see ros_timer_restarter.h
   ScanGeometry geometry_;
   std::vector<float> ranges_;
   double ahead_ = 2.2, half_width_ = 1.0, speed_ = 0.5, pause_ = 1.5, radius_ = 0.22, laser_x_ = 0.2, laser_z_ = 0.3;
