@@ -18,6 +18,11 @@ bool ClockPolicy::update(double ros_now, double steady_now)
     return false;
   }
   const bool jumped_back = ros_now < ros_now_ - kBackwardTolerance;
+  if (ros_now_ == 0.0 && ros_now != 0.0)
+  {
+    time_started_ = true;  // a simulated clock's first tick
+    start_steady_ = steady_now;
+  }
   ros_now_ = ros_now;
   steady_now_ = steady_now;
   if (jumped_back)

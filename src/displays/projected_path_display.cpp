@@ -284,7 +284,7 @@ void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path con
   if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
   {
     // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
-    const bool expected = RosClock::shared().policy().justJumpedBack();
+    const bool expected = RosClock::shared().policy().justStartedOrJumpedBack();
     setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
               QString(expected ? kWaitingForTfAfterJump : "") +
                   QString::fromStdString(error) + " (the path is drawn once the transform is available)");

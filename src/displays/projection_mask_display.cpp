@@ -247,7 +247,7 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
   if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
   {
     // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
-    const bool expected = RosClock::shared().policy().justJumpedBack();
+    const bool expected = RosClock::shared().policy().justStartedOrJumpedBack();
     setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
               QString("%1No transform from '%2' at the scan's stamp")
                   .arg(expected ? kWaitingForTfAfterJump : "")

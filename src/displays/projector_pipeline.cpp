@@ -89,7 +89,7 @@ PoseStep ProjectorPipeline::followPose(const PoseInput& in, const ClockPolicy& c
   // before the jump (rviz has not cleared it yet): expected for a moment, a warning.
   const ProjectorPose& pose = pose_.pose();
   step.transform_problem_expected =
-      !step.ok && clock.justJumpedBack() &&
+      !step.ok && clock.justStartedOrJumpedBack() &&
       (pose.state == ProjectorPose::NoTransform || (pose.state == ProjectorPose::Stale && pose.age < 0.0));
   if (step.transform_problem_expected)
   {

@@ -44,15 +44,13 @@ struct OgreResourceCounts
   std::size_t meshes = 0, materials = 0, textures = 0, scene_nodes = 0;
 };
 
-std::size_t countNodes(const Ogre::Node* node)
+/// Every scene node the scene manager owns: its own list, not a walk from the root (a node detached
+/// from a destroyed parent is under no root but still there: exactly the leak a soak looks for).
+/// OGRE 1.12 keeps the list protected; a member pointer taken through a derived class reads it.
+struct SceneNodeList : Ogre::SceneManager
 {
-  std::size_t n = 1;
-  for (const Ogre::Node* child : node->getChildren())
-  {
-    n += countNodes(child);
-  }
-  return n;
-}
+  static std::size_t count(const Ogre::SceneManager& manager) { return (manager.*(&SceneNodeList::mSceneNodes)).size(); }
+};
 
 std::size_t resourceCount(Ogre::ResourceManager& manager)
 {
@@ -71,7 +69,7 @@ OgreResourceCounts ogreResourceCounts(Ogre::SceneManager* scene)
   counts.meshes = resourceCount(Ogre::MeshManager::getSingleton());
   counts.materials = resourceCount(Ogre::MaterialManager::getSingleton());
   counts.textures = resourceCount(Ogre::TextureManager::getSingleton());
-  counts.scene_nodes = scene ? countNodes(scene->getRootSceneNode()) : 0;
+  counts.scene_nodes = scene ? SceneNodeList::count(*scene) : 0;
   return counts;
 }
 

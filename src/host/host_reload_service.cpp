@@ -25,8 +25,9 @@ HostReloadService::HostReloadService(std::function<HostLoadResult()> reload)
 HostReloadService::~HostReloadService()
 {
   // The guard goes first: a request waiting for the Qt thread (this one, now in here) gets a
-  // broken promise at once and returns. Shutting the server down first would wait for that very
-  // request, which waits for this thread: a stall of the reply timeout at every exit.
+  // broken promise at once and replies "shutting down". Shutting the server down first would drop
+  // the caller's connection instead: a failed call with no reason (test/host/
+  // host_reload_service_test.cpp).
   {
     std::lock_guard<std::mutex> lock(guard_mutex_);
     guard_.reset();

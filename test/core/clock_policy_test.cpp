@@ -93,3 +93,27 @@ TEST(DataAge, StampsFromBeforeABackwardJumpAreFromTheFuture)
   EXPECT_FALSE(isFromTheFuture(200.0, 100.0, 0.0)) << "timeout 0: never";
   EXPECT_FALSE(isFromTheFuture(std::nan(""), 100.0, 1.0));
 }
+
+TEST(ClockPolicy, ASimulatedClockStartingOpensTheTfGraceAsAJumpBackDoes)
+{
+  // Under /use_sim_time ROS time reads 0 until the first /clock; the bag's tf follows it.
+  ClockPolicy clock;
+  clock.update(0.0, 10.0);
+  clock.update(0.0, 10.5);
+  EXPECT_FALSE(clock.justStartedOrJumpedBack()) << "no time yet, nothing started";
+  clock.update(1700000000.0, 11.0);
+  EXPECT_EQ(clock.epoch(), 0u) << "time starting is no backward jump: nothing to forget";
+  EXPECT_NEAR(clock.sinceTimeStarted(), 0.0, 1e-12);
+  EXPECT_TRUE(clock.justStartedOrJumpedBack());
+  clock.update(1700000000.9, 11.9);
+  EXPECT_TRUE(clock.justStartedOrJumpedBack()) << "0.9 s after the start";
+  clock.update(1700000001.1, 12.1);
+  EXPECT_FALSE(clock.justStartedOrJumpedBack()) << "1.1 s after the start: tf missing now is an error";
+
+  // A wall clock (never zero) never started in this sense.
+  ClockPolicy wall;
+  wall.update(1700000000.0, 5.0);
+  wall.update(1700000000.1, 5.1);
+  EXPECT_FALSE(wall.justStartedOrJumpedBack());
+  EXPECT_TRUE(std::isinf(wall.sinceTimeStarted()));
+}

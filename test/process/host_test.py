@@ -192,6 +192,37 @@ class HostTest(unittest.TestCase):
             self.assertGreater(grab_window(self.x, window).count_colour(CYAN), 200,
                                what + ": the last good picture is gone")
 
+    def test_reloads_leave_no_scene_nodes_behind(self):
+        # Issue 23, defect 5: 20 reloads of a config with each of the package's displays (a
+        # ProjectionMask added to host.rviz). The host's "OGRE scene nodes" counts the scene
+        # manager's own list (a node left detached by a destroyed display is under no root but
+        # still counted): the same after the 2nd load as after the 21st.
+        mask = ("    - Class: rviz_projector/ProjectionMask\n      Enabled: true\n      Name: Mask\n"
+                "      Topic: /host_test/scan\n      Value: true\n")
+        camera = "    - Class: rviz_projector/ProjectorCamera\n"
+        host, _ = self.start_showing(self.config_copy(replace={camera: mask + camera}))
+
+        def nodes_after_load(loads):
+            """"OGRE scene nodes" from a config status of load number `loads` (the picture shown)."""
+            self.assertIsNotNone(self.wait_colour(host.pid, MAGENTA), "load %d: no arrows" % loads)
+            def counted():
+                _, keys = self.latest_status("config", after=time.monotonic())
+                return keys if int(keys["Loads"]) == loads else None
+            keys = wait_for(counted, 20.0, 0.1)
+            self.assertIsNotNone(keys, "no config status of load %d" % loads)
+            self.assertIn("Mask (rviz_projector/ProjectionMask)", self.latest_status("displays")[1])
+            return int(keys["OGRE scene nodes"])
+
+        counts = []
+        for i in range(20):
+            reply = self.reload()
+            self.assertTrue(reply.success, reply.message)
+            if i in (0, 19):
+                counts.append(nodes_after_load(i + 2))
+        self.assertTrue(host.alive(), host.log_tail())
+        self.assertGreater(counts[0], 0)
+        self.assertEqual(counts[1], counts[0], "scene nodes after the 2nd and the 21st load: %s" % counts)
+
     def test_watch_follows_the_file(self):
         config = self.config_copy()
         host, _ = self.start_showing(config, args=("--watch",))

@@ -459,6 +459,60 @@ TEST_F(ProjectionMaskTest, PointCloudMasksByCellsOnceItsTransformArrives)
   EXPECT_GT(countColour(grabWithArrows(), kArrowMagenta), 100);
 }
 
+TEST_F(ProjectionMaskTest, AScanOf200000ReturnsIsMaskedByCellsWithinTheColumnBudget)
+{
+  // The README's budget: a scan of more than 20,000 returns is masked by cells of side
+  // max(Margin, 5 cm), one column per occupied cell, at most 20,000 columns.
+  ASSERT_TRUE(addFloorPath());
+  grabWithArrows();
+  sensor_msgs::LaserScan scan;
+  scan.header.frame_id = "test_laser";  // at (0, 0, 0.3) in map
+  scan.range_min = 0.05f;
+  scan.range_max = 20.0f;
+  // 1. 200,000 returns at 1.55 m within 5 .. 7 mrad: all on the floor in x 1.5499 .. 1.55, y 7.7 ..
+  //    10.9 mm, one 0.1 m cell [1.5, 1.6) x [0, 0.1): one column at its centre, 0.1 + 0.05 wide.
+  scan.angle_min = 0.005f;
+  scan.angle_increment = 1e-8f;
+  scan.angle_max = scan.angle_min + scan.angle_increment * 199999.0f;
+  scan.ranges.assign(200000, 1.55f);
+  scan.header.stamp = ros::Time::now();
+  scan_pub_.publish(scan);
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("cells"); }))
+      << statusOf(mask_, "Scan").text.toStdString();
+  EXPECT_EQ(mask_->columns(), 1u);
+  EXPECT_EQ(statusOf(mask_, "Scan").level, rviz::StatusProperty::Ok);
+  EXPECT_TRUE(statusOf(mask_, "Scan").text.startsWith("200000 returns (more than 20000): masked by 1 cells of 0.1 m"))
+      << statusOf(mask_, "Scan").text.toStdString();
+  expectShafts({Column{{1.55, 0.05}, 0.1 + 0.05, 2.0}}, 5, 20);
+
+  // 2. 200,000 returns all round, at ranges spread over 0.3 .. 9.9 m: about 30,000 occupied cells
+  //    (counted here by hand), more than the budget: 20,000 columns and a warning saying so.
+  scan.angle_min = -3.14159f;
+  scan.angle_increment = 2.0f * 3.14159f / 200000.0f;
+  scan.angle_max = scan.angle_min + scan.angle_increment * 199999.0f;
+  std::set<std::pair<long, long>> cells;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i)
+  {
+    const double golden = 0.6180339887498949 * double(i);
+    scan.ranges[i] = static_cast<float>(0.3 + 9.6 * (golden - std::floor(golden)));
+    const double a = double(scan.angle_min) + double(scan.angle_increment) * double(i);
+    const double r = double(scan.ranges[i]);
+    cells.emplace(std::lround(std::floor(r * std::cos(a) / 0.1)), std::lround(std::floor(r * std::sin(a) / 0.1)));
+  }
+  ASSERT_GT(cells.size(), 25000u) << "the scan must occupy more cells than the budget";
+  scan.header.stamp = ros::Time::now();
+  scan_pub_.publish(scan);
+  ASSERT_TRUE(waitFor([&] { return statusOf(mask_, "Scan").text.contains("only the first"); }))
+      << statusOf(mask_, "Scan").text.toStdString();
+  EXPECT_EQ(mask_->columns(), 20000u);
+  EXPECT_EQ(statusOf(mask_, "Scan").level, rviz::StatusProperty::Warn);
+  EXPECT_TRUE(statusOf(mask_, "Scan").text.contains("only the first 20000 cells"));
+  // rviz goes on: the next ordinary scan is masked as before.
+  publishScan({1.3f});
+  ASSERT_TRUE(waitFor([&] { return mask_->columns() == 1; }));
+  EXPECT_TRUE(statusOf(mask_, "Scan").text.contains("1 returns masked"));
+}
+
 TEST_F(ProjectionMaskTest, MaxLitHeightClipsTheProjectorViewOnly)
 {
   // Arrows lifted 0.8 m above the floor (the projector is at 1.2 m).

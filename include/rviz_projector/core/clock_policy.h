@@ -49,12 +49,17 @@ public:
   /// Whether any reading was given.
   bool started() const { return started_; }
   /// Steady seconds since the last backward jump (infinity when there was none). Right after a
-  /// jump tf is empty (rviz clears its buffer) until the bag plays it again: a missing transform
-  /// then is expected, reported as a warning while this is below kJumpGrace, not as an error.
+  /// jump tf is empty (rviz clears its buffer) until the bag plays it again.
   double sinceJump() const { return epoch_ == 0 ? HUGE_VAL : steady_now_ - jump_steady_; }
+  /// Steady seconds since ROS time started: the first reading after zero readings (a simulated
+  /// clock's first /clock, e.g. `rosbag play --clock` starting); infinity when it never was zero
+  /// (a wall clock). The bag's first tf comes just after its first /clock.
+  double sinceTimeStarted() const { return time_started_ ? steady_now_ - start_steady_ : HUGE_VAL; }
+  /// How long a missing transform stays expected (a warning, not an error) after ROS time jumped
+  /// back or started.
   static constexpr double kJumpGrace = 1.0;
-  /// Within kJumpGrace of a backward jump: missing tf is expected, a warning.
-  bool justJumpedBack() const { return sinceJump() < kJumpGrace; }
+  /// Within kJumpGrace of a backward jump or of ROS time starting: missing tf is expected.
+  bool justStartedOrJumpedBack() const { return sinceJump() < kJumpGrace || sinceTimeStarted() < kJumpGrace; }
 
 private:
   bool started_ = false;
@@ -65,6 +70,8 @@ private:
   double rate_ = 1.0;
   double fixed_rate_ = std::nan("");
   double jump_steady_ = 0.0;  ///< steady time of the last backward jump
+  bool time_started_ = false;  ///< ROS time went from zero to non-zero
+  double start_steady_ = 0.0;  ///< steady time it did
   std::uint64_t epoch_ = 0;
 };
 

@@ -8,8 +8,8 @@
 
 namespace rviz_projector
 {
-/// How a status starts when tf is missing just after a backward jump (ClockPolicy::justJumpedBack).
-constexpr const char* kWaitingForTfAfterJump = "Waiting for tf after ROS time jumped back (a bag loop?): ";
+/// How a status starts when tf is missing just after a backward jump (ClockPolicy::justStartedOrJumpedBack).
+constexpr const char* kWaitingForTfAfterJump = "Waiting for tf after ROS time started or jumped back (a bag starting or looping?): ";
 
 class RosClock
 {
