@@ -1,5 +1,7 @@
 #include "rviz_projector/core/pinhole_model.h"
 
+#include "rviz_projector/core/lens_distortion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -136,6 +138,26 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
   cx /= bx;
   cy /= by;
 
+  // A D that folds back inside K's raw image (the pixels the lens really lights) is refused.
+  LensDistortion distortion;
+  if (LensDistortion::fromCalibration(c, distortion).ok() && !distortion.none() && !allZero(c.K))
+  {
+    LensCalibration raw = c;
+    raw.P.fill(0.0);
+    raw.D.clear();
+    PinholeModel raw_lens;
+    if (fromCalibration(raw, raw_lens).ok())
+    {
+      const double corner = raw_lens.cornerRadius();
+      const std::string fold = LensDistortion::foldError(distortion.foldCheck(corner), corner);
+      if (!fold.empty())
+      {
+        check.error = fold;
+        return check;
+      }
+    }
+  }
+
   std::ostringstream warning;
   const bool distorted = std::any_of(c.D.begin(), c.D.end(), [](double d) { return d != 0.0; });
   if (distorted)
@@ -166,6 +188,20 @@ bool PinholeModel::project(const Vec3& p, Vec2& pixel) const
 Vec3 PinholeModel::ray(const Vec2& pixel) const
 {
   return {(pixel.x - cx_) / fx_, (pixel.y - cy_) / fy_, 1.0};
+}
+
+double PinholeModel::cornerRadius() const
+{
+  double radius = 0.0;
+  for (const double u : {-0.5, double(width_) - 0.5})
+  {
+    for (const double v : {-0.5, double(height_) - 0.5})
+    {
+      const Vec3 r = ray({u, v});
+      radius = std::max(radius, std::hypot(r.x, r.y));
+    }
+  }
+  return radius;
 }
 
 Vec3 PinholeModel::centre() const

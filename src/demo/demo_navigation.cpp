@@ -45,14 +45,13 @@
 #include <visualization_msgs/Marker.h>
 
 #include "demo_world.h"
-#include "ros_timer_restarter.h"
+#include "ros_time_scheduler.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -143,12 +142,11 @@ public:
                "starts with the clock");
     }
 
-    control_timer_ = nh_.createTimer(ros::Duration(1.0 / tf_rate), &DemoNavigation::onControl, this);
-    replan_timer_ = nh_.createTimer(ros::Duration(1.0 / replan_rate), &DemoNavigation::onReplan, this);
-    footprint_timer_ = nh_.createTimer(ros::Duration(0.1), &DemoNavigation::onFootprint, this);
-    obstacle_timer_ = nh_.createTimer(ros::Duration(1.0), &DemoNavigation::onObstacle, this);
-    restarter_.reset(new RosTimerRestarter(
-        nh_, {&control_timer_, &replan_timer_, &footprint_timer_, &obstacle_timer_}, "demo_navigation"));
+    scheduler_.add(1.0 / tf_rate, [this] { onControl(); });
+    scheduler_.add(1.0 / replan_rate, [this] { onReplan(); });
+    scheduler_.add(0.1, [this] { onFootprint(); });
+    scheduler_.add(1.0, [this] { onObstacle(); });
+    scheduler_.start(nh_);
   }
 
 private:
@@ -170,7 +168,7 @@ private:
 
   // --- timer callbacks ---------------------------------------------------------------------
 
-  void onControl(const ros::TimerEvent&)
+  void onControl()
   {
     const ros::Time now = ros::Time::now();
     if (now.isZero())
@@ -282,7 +280,7 @@ private:
     status_pub_.publish(status);
   }
 
-  void onReplan(const ros::TimerEvent&)
+  void onReplan()
   {
     if (!started_)
     {
@@ -295,7 +293,7 @@ private:
     replan(now);
   }
 
-  void onFootprint(const ros::TimerEvent&)
+  void onFootprint()
   {
     geometry_msgs::PolygonStamped footprint;
     footprint.header.frame_id = kBaseFrame;
@@ -315,7 +313,7 @@ private:
     }
   }
 
-  void onObstacle(const ros::TimerEvent&)
+  void onObstacle()
   {
     if (started_)
     {
@@ -496,11 +494,7 @@ private:
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
 
-  ros::Timer control_timer_;
-  ros::Timer replan_timer_;
-  ros::Timer footprint_timer_;
-  ros::Timer obstacle_timer_;
-  std::unique_ptr<RosTimerRestarter> restarter_;  // see ros_timer_restarter.h
+  RosTimeScheduler scheduler_{"demo_navigation"};  // control, replan, footprint, obstacle (ROS time)
 };
 
 }  // namespace

@@ -12,7 +12,6 @@
 //           /demo/pedestrian  visualization_msgs/MarkerArray (a body and a head, map frame) for the main view
 // tf:       static base_link -> base_laser
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,7 +26,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rviz_projector/core/scan_simulation.h"
-#include "ros_timer_restarter.h"
+#include "ros_time_scheduler.h"
 
 namespace
 {
@@ -76,12 +75,12 @@ public:
     mount.transform.translation.z = laser_z_;
     mount.transform.rotation.w = 1.0;
     static_broadcaster_.sendTransform(mount);
-    timer_ = nh_.createTimer(ros::Duration(1.0 / rate), &DemoPedestrian::step, this);
-    restarter_.reset(new rviz_projector_demo::RosTimerRestarter(nh_, {&timer_}, "demo_pedestrian"));
+    scheduler_.add(1.0 / rate, [this] { step(); });
+    scheduler_.start(nh_);
   }
 
 private:
-  void step(const ros::TimerEvent&)
+  void step()
   {
     geometry_msgs::TransformStamped laser;
     try
@@ -162,8 +161,7 @@ private:
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   ros::Publisher scan_pub_;
   ros::Publisher marker_pub_;
-  ros::Timer timer_;
-  std::unique_ptr<rviz_projector_demo::RosTimerRestarter> restarter_;  // see ros_timer_restarter.h
+  rviz_projector_demo::RosTimeScheduler scheduler_{"demo_pedestrian"};  // the scan, on ROS time
   ScanGeometry geometry_;
   std::vector<float> ranges_;
   double ahead_ = 2.2, half_width_ = 1.0, speed_ = 0.5, pause_ = 1.5, radius_ = 0.22, laser_x_ = 0.2, laser_z_ = 0.3;

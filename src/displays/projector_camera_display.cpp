@@ -32,6 +32,7 @@
 #include "rviz_projector/displays/projector_floor_overlay.h"
 #include "rviz_projector/displays/projector_image_publisher.h"
 #include "rviz_projector/displays/projector_lens_source.h"
+#include "rviz_projector/displays/distortion_warp.h"
 #include "rviz_projector/displays/projector_output.h"
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/projector_pose.h"
@@ -50,6 +51,7 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
   unsubscribe();
   image_publisher_.reset();
   output_.reset();  // listener, viewport, render window, widget
+  warp_.reset();    // its texture's viewport uses the view's camera
   gate_.reset();
   overlay_.reset();
   crosshairs_.reset();
@@ -87,6 +89,7 @@ void ProjectorCameraDisplay::onInitialize()
   image_publisher_ = std::make_unique<ProjectorImagePublisher>();
   overlay_ = std::make_unique<ProjectorFloorOverlay>(scene_manager_, scene_node_);
   crosshairs_ = std::make_unique<ProjectorCrosshairs>();
+  warp_ = std::make_unique<DistortionWarp>(view_->camera(), this);
 
   connect(qApp, SIGNAL(screenAdded(QScreen*)), this, SLOT(updateOutput()));  // when enabled
   connect(qApp, SIGNAL(screenRemoved(QScreen*)), this, SLOT(updateOutput()));
@@ -243,6 +246,7 @@ void ProjectorCameraDisplay::onLensChanged(const LensEvent& event)
   const bool size_changed = hasLens() != (shown_size_.first > 0) ||
                             (hasLens() && (lens().width() != shown_size_.first || lens().height() != shown_size_.second));
   shown_size_ = hasLens() ? std::make_pair(lens().width(), lens().height()) : std::make_pair(0u, 0u);
+  updateWarp();
   applyProjection();
   if (size_changed && isEnabled())
   {
@@ -264,8 +268,9 @@ void ProjectorCameraDisplay::applyProjection()
   {
     return;
   }
-  const std::string clip = view_->setProjection(hasLens() ? &lens() : nullptr, props_.near_clip->getFloat(),
-                                                props_.far_clip->getFloat());
+  // Through a distorting lens the scene is rendered as the warp's ideal pinhole, then warped.
+  const PinholeModel* projection = !hasLens() ? nullptr : warp_ && warp_->active() ? &warp_->idealLens() : &lens();
+  const std::string clip = view_->setProjection(projection, props_.near_clip->getFloat(), props_.far_clip->getFloat());
   warnIf("Clipping", QString::fromStdString(clip));
   if (output_)
   {
@@ -273,7 +278,37 @@ void ProjectorCameraDisplay::applyProjection()
     output_->setBackground(props_.testPattern() == TestPattern::Crosshairs ? Ogre::ColourValue::Black :
                                                                                props_.background->getOgreColor());
   }
+  if (warp_)
+  {
+    warp_->setBackground(props_.background->getOgreColor());
+  }
   context_->queueRender();
+}
+
+void ProjectorCameraDisplay::updateWarp()
+{
+  if (!warp_)
+  {
+    return;
+  }
+  const LensDistortion none;
+  const LensDistortion& distortion = hasLens() ? pipeline_.lensSource().distortion() : none;
+  const std::string error = hasLens() ? warp_->configure(lens(), distortion) : (warp_->clear(), std::string());
+  const QString drawn = pipeline_.lensSource().statuses(props_.topic->getTopic()).distortion_drawn;
+  if (!error.empty())
+  {
+    setStatus(rviz::StatusProperty::Warn, "Distortion",
+              QString("%1: not applied, %2").arg(drawn, QString::fromStdString(error)));
+  }
+  else if (warp_->active())
+  {
+    setStatus(rviz::StatusProperty::Ok, "Distortion",
+              QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)")
+                  .arg(drawn)
+                  .arg(warp_->grid().columns)
+                  .arg(warp_->grid().rows)
+                  .arg(warp_->gridError(), 0, 'f', 3));
+  }
 }
 
 void ProjectorCameraDisplay::updateMaxLitHeight()

@@ -13,6 +13,7 @@
 #include <rviz/properties/int_property.h>
 #include <rviz/properties/string_property.h>
 
+#include "rviz_projector/displays/distortion_warp.h"
 #include "rviz_projector/displays/projection_animation.h"
 #include "rviz_projector/displays/projection_change_counter.h"
 #include "rviz_projector/displays/projection_gate.h"
@@ -132,12 +133,17 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   // The frustum never shows in the projector's own view.
   overlay_->setFootprintVisibilityFlags(~vis_bit_);
   // The crosshairs' camera sees only them (nothing else is in its scene), with or without a pose.
-  Ogre::Camera* camera = crosshairs_shown_ ? crosshairs_->camera() : view_->camera();
+  // Through a distorting lens the window shows the warp of the ideal render (the crosshairs are
+  // drawn at raw pixels: never warped).
+  const bool warped = !crosshairs_shown_ && warp_->active();
+  Ogre::Camera* camera = crosshairs_shown_ ? crosshairs_->camera() : warped ? warp_->warpCamera() : view_->camera();
   if (Ogre::Viewport* viewport = output_->viewport(); viewport && viewport->getCamera() != camera)
   {
     viewport->setCamera(camera);
   }
-  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : hasLens() && pipeline_.poseOk() ? vis_bit_ : 0u);
+  const bool drawable = hasLens() && pipeline_.poseOk();
+  warp_->setVisibilityMask(drawable ? vis_bit_ : 0u);
+  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : !drawable ? 0u : warped ? ~0u : vis_bit_);
 }
 
 void ProjectorCameraDisplay::onFrameTimer()
@@ -196,6 +202,10 @@ void ProjectorCameraDisplay::renderNow()
   {
     ++frames_skipped_;  // the projector already shows exactly this
     return;
+  }
+  if (!crosshairs_shown_)
+  {
+    warp_->renderIdeal();  // through a distorting lens: the ideal view first (nothing without one)
   }
   output_->render(!publish);
   ++frames_rendered_;

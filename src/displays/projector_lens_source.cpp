@@ -79,6 +79,23 @@ void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
   check_ = PinholeModel::fromCalibration(calibration_, lens);
   has_lens_ = check_.ok();
   narrow_view_.clear();
+  distortion_ = LensDistortion();
+  if (has_lens_ && LensDistortion::fromCalibration(calibration_, distortion_).ok() && !distortion_.none())
+  {
+    // Drawn through the distortion: the projector's pixels are K's (P is the rectified camera,
+    // which a projector does not have). fromCalibration checked K with the fold check.
+    LensCalibration raw = calibration_;
+    raw.P.fill(0.0);
+    PinholeModel raw_lens;
+    if (PinholeModel::fromCalibration(raw, raw_lens).ok())
+    {
+      lens = raw_lens;
+    }
+    else
+    {
+      distortion_ = LensDistortion();  // K unusable: P's pinhole, D not drawn (the warning says so)
+    }
+  }
   if (has_lens_)
   {
     lens_ = lens;
@@ -118,7 +135,18 @@ LensStatuses ProjectorLensSource::statuses(const QString& topic) const
                       .arg(lens_.fy())
                       .arg(lens_.cx())
                       .arg(lens_.cy());
-  s.distortion = QString::fromStdString(check_.warning);
+  if (distortion_.none())
+  {
+    s.distortion = QString::fromStdString(check_.warning);
+  }
+  else
+  {
+    s.distortion_drawn = QString("%1, D =").arg(modelName(distortion_.model()));
+    for (const double d : distortion_.coefficients())
+    {
+      s.distortion_drawn += QString(" %1").arg(d);
+    }
+  }
   s.field_of_view = QString::fromStdString(narrow_view_);
   return s;
 }

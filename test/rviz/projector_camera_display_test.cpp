@@ -209,12 +209,28 @@ TEST_F(ProjectorSceneTest, BadCameraInfoIsReportedAndShowsBackgroundOnly)
     info_pub_.publish(info_);  // good again
     ASSERT_TRUE(waitFor([&] { return projector_->hasLens(); })) << c.what;
   }
-  // Distortion is reported, not applied.
+  // A plumb_bob D is drawn through the warp (issue 24; its pixels: projector_pixels_test.cpp) and
+  // says so; the same D under a model that cannot be drawn is a warning.
   sensor_msgs::CameraInfo distorted = info_;
+  distorted.distortion_model = "plumb_bob";
   distorted.D = {0.1, -0.05, 0, 0, 0};
   info_pub_.publish(distorted);
-  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").present; }));
-  EXPECT_EQ(statusOf(projector_, "Distortion").level, rviz::StatusProperty::Warn);
+  ASSERT_TRUE(waitFor([&] {
+    const Status s = statusOf(projector_, "Distortion");
+    return s.present && s.level == rviz::StatusProperty::Ok;
+  })) << statusOf(projector_, "Distortion").text.toStdString();
+  const std::string drawn = statusOf(projector_, "Distortion").text.toStdString();
+  EXPECT_EQ(drawn.rfind("plumb_bob, D = 0.1 -0.05 0 0 0: drawn through a 32x20 warp", 0), 0u) << drawn;
+  distorted.distortion_model = "equidistant";
+  info_pub_.publish(distorted);
+  ASSERT_TRUE(waitFor([&] {
+    const Status s = statusOf(projector_, "Distortion");
+    return s.present && s.level == rviz::StatusProperty::Warn;
+  }));
+  EXPECT_TRUE(statusOf(projector_, "Distortion").text.startsWith("distortion D is not applied"))
+      << statusOf(projector_, "Distortion").text.toStdString();
+  info_pub_.publish(info_);
+  ASSERT_TRUE(waitFor([&] { return !statusOf(projector_, "Distortion").present; })) << "D zero: no status";
 }
 
 TEST_F(ProjectorSceneTest, UnknownFrameIsAnErrorAndBlanksTheView)

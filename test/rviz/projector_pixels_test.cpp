@@ -255,3 +255,57 @@ INSTANTIATE_TEST_SUITE_P(AwkwardPairs, LetterboxPixelsTest,
                          ::testing::Values(SizePair{1024, 768, 854, 480}, SizePair{1024, 768, 637, 574},
                                            SizePair{640, 480, 853, 480}, SizePair{1280, 800, 1281, 801},
                                            SizePair{800, 600, 799, 599}, SizePair{1280, 800, 1000, 700}));
+
+// Issue 24: through a distorting lens, the targets land where cv::projectPoints with K and D puts
+// them (the oracle: projector_test_fixture.cpp), for the issue's three lenses on its 1280x800,
+// f = 1900 projector, targets out to the image corners, where ignoring D misplaces them by 16-69 px.
+namespace
+{
+sensor_msgs::CameraInfo distortedInfo(const std::vector<double>& d)
+{
+  sensor_msgs::CameraInfo info = projectorInfo(1280, 800, 1900, 639.5, 399.5);
+  info.distortion_model = "plumb_bob";
+  info.D = d;
+  return info;
+}
+const std::vector<Vec2> kCornerTargets{{640, 400}, {60, 45}, {1220, 50}, {1225, 755}, {55, 760}, {330, 200}};
+}  // namespace
+
+TEST_F(ProjectorCameraTest, PixelAccuracyThroughABarrelLens)
+{
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const double worst = pixelAccuracy(distortedInfo({-0.05, 0, 0, 0, 0}), down, kCornerTargets);
+  std::printf("k1 = -0.05: max error %.3f px\n", worst);
+  EXPECT_LE(worst, kBound);
+}
+
+TEST_F(ProjectorCameraTest, PixelAccuracyThroughAPincushionLens)
+{
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const double worst = pixelAccuracy(distortedInfo({0.10, 0, 0, 0, 0}), down, kCornerTargets);
+  std::printf("k1 = +0.10: max error %.3f px\n", worst);
+  EXPECT_LE(worst, kBound);
+}
+
+TEST_F(ProjectorCameraTest, PixelAccuracyThroughAWideAngleLensOnAPitchedMount)
+{
+  const Mount m = bodyMount({0.0, 0.0, 1.2}, 0.0, 0.6, 0.0);
+  const double worst = pixelAccuracy(distortedInfo({-0.2, 0.05, 0, 0, 0}), m, kCornerTargets);
+  std::printf("k1 = -0.2, k2 = 0.05: max error %.3f px\n", worst);
+  EXPECT_LE(worst, kBound);
+}
+
+TEST_F(ProjectorCameraTest, PixelAccuracyThroughAWideAngleLensWithBinningAndRegionOfInterest)
+{
+  sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0.001, -0.001, 0});
+  info.roi.x_offset = 160;
+  info.roi.y_offset = 100;
+  info.roi.width = 960;
+  info.roi.height = 600;
+  info.binning_x = 2;
+  info.binning_y = 2;
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const double worst = pixelAccuracy(info, down, {{240, 150}, {30, 25}, {450, 30}, {455, 275}, {25, 280}});
+  std::printf("wide lens, ROI 960x600+160+100, binning 2x2: max error %.3f px\n", worst);
+  EXPECT_LE(worst, kBound);
+}

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include <opencv2/calib3d.hpp>
+
 #include <QApplication>
 #include <QGuiApplication>
 #include <QScreen>
@@ -62,6 +64,11 @@ PixelOracle::PixelOracle(const sensor_msgs::CameraInfo& info, const Mount& mount
   const unsigned bx = std::max(1u, info.binning_x), by = std::max(1u, info.binning_y);
   width_ = int((roi ? info.roi.width : info.width) / bx);
   height_ = int((roi ? info.roi.height : info.height) / by);
+  d_.assign(info.D.begin(), info.D.end());
+  distorted_ = std::any_of(d_.begin(), d_.end(), [](double d) { return d != 0.0; });
+  const double ox = roi ? info.roi.x_offset : 0.0, oy = roi ? info.roi.y_offset : 0.0;
+  raw_k_ = cv::Matx33d(info.K[0] / bx, 0.0, (info.K[2] - ox) / bx, 0.0, info.K[4] / by, (info.K[5] - oy) / by, 0.0, 0.0,
+                       1.0);
 }
 
 cv::Point3d PixelOracle::optical(const Vec2& floor) const
@@ -72,13 +79,26 @@ cv::Point3d PixelOracle::optical(const Vec2& floor) const
 
 Vec2 PixelOracle::imagePixel(const Vec2& floor) const
 {
+  if (distorted_)
+  {
+    std::vector<cv::Point2d> uv;
+    cv::projectPoints(std::vector<cv::Point3d>{optical(floor)}, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), raw_k_, d_, uv);
+    return Vec2{uv[0].x, uv[0].y};
+  }
   const cv::Point2d uv = model_.project3dToPixel(optical(floor));
   return Vec2{uv.x, uv.y};
 }
 
 Vec2 PixelOracle::floorPoint(const Vec2& pixel) const
 {
-  const cv::Point3d ray = model_.projectPixelTo3dRay(cv::Point2d(pixel.x, pixel.y));
+  cv::Point3d ray = model_.projectPixelTo3dRay(cv::Point2d(pixel.x, pixel.y));
+  if (distorted_)
+  {
+    std::vector<cv::Point2d> normalised;
+    cv::undistortPoints(std::vector<cv::Point2d>{cv::Point2d(pixel.x, pixel.y)}, normalised, raw_k_, d_, cv::noArray(),
+                        cv::noArray(), cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-12));
+    ray = cv::Point3d(normalised[0].x, normalised[0].y, 1.0);
+  }
   const tf2::Vector3 d = pose_.getBasis() * tf2::Vector3(ray.x, ray.y, ray.z);
   const tf2::Vector3& o = pose_.getOrigin();
   const double t = -o.z() / d.z();

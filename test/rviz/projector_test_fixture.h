@@ -97,6 +97,11 @@ private:
   cv::Point3d optical(const Vec2& floor) const;
 
   image_geometry::PinholeCameraModel model_;
+  // A non-zero D (issue 24): the raw pixels are cv::projectPoints with K (ROI and binning applied
+  // by hand) and D, the projector's pixels through its lens.
+  bool distorted_ = false;
+  cv::Matx33d raw_k_;
+  std::vector<double> d_;
   tf2::Transform pose_;  // optical frame in map
   int width_ = 0, height_ = 0;
 };

@@ -52,6 +52,15 @@ TEST_F(CameraRobustness, UnusableCameraInfosAreErrorsAndShowBackgroundOnly)
        },
        "region of interest 640x400+1000+0 lies outside the 1280x800 image"},
       {"binning beyond the image", [](sensor_msgs::CameraInfo& i) { i.binning_x = 2000; }, "binning 2000x1 leaves no pixels"},
+      // Issue 24: g(r) = r (1 - 7.8 r^6) turns back at r = 54.6^(-1/6) = 0.513 (g = 0.440), inside
+      // this lens's corner radius hypot(640, 400) / 1300 = 0.581 (by hand).
+      {"D that folds back inside the image",
+       [](sensor_msgs::CameraInfo& i) {
+         i.distortion_model = "plumb_bob";
+         i.D = {0, 0, 0, 0, -7.8};
+       },
+       "distortion D folds back at the normalised radius r = 0.513 (where it reaches 0.440), inside the image "
+       "(its corner is at 0.581): pixels beyond would show two rays or none; refused, nothing is drawn"},
   };
   for (const Case& c : cases)
   {

@@ -35,6 +35,9 @@ public:
    * from cx, cy) and binning (P's rows divided by binning_x, binning_y) applied. The model's image
    * is the reduced one: the ROI's size (the whole image when the ROI is empty) divided by the
    * binning, rounded down. On error `out` is left unchanged.
+   *
+   * A non-zero D (plumb_bob, rational_polynomial) whose radial map folds back before the image
+   * corner of K's raw image is an error (LensDistortion::foldCheck): such a lens cannot be drawn.
    */
   static LensCheck fromCalibration(const LensCalibration& calibration, PinholeModel& out);
 
@@ -44,6 +47,8 @@ public:
   Vec3 ray(const Vec2& pixel) const;
   /// Optical centre in the optical frame (non-zero only with Tx/Ty set).
   Vec3 centre() const;
+  /// Largest normalised radius, |ray(pixel).xy|, of the image's four outer corners (pixel edges).
+  double cornerRadius() const;
 
   /**
    * Row-major 4x4 projection matrix for an OpenGL-style camera (x right, y up, looking down -z)

@@ -49,6 +49,7 @@ class DisplayGroupVisibilityProperty;
 
 namespace rviz_projector
 {
+class DistortionWarp;
 class ProjectionGate;
 class ProjectorCrosshairs;
 class ProjectorFloorOverlay;
@@ -138,6 +139,8 @@ private:
   void onLensChanged(const LensEvent& event);
   /// The CameraInfo, Distortion and Field of view statuses, as the lens source says.
   void showLensStatuses();
+  /// The distortion warp for the lens (none: released) and its "Distortion" status.
+  void updateWarp();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
   void checkMainViewCost();
   /// The "Visibility" error when no visibility bit was left for this display.
@@ -193,5 +196,6 @@ private:
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
   std::unique_ptr<ProjectorCrosshairs> crosshairs_;
   bool crosshairs_shown_ = false;
+  std::unique_ptr<DistortionWarp> warp_;  ///< drawing through the lens's D (inactive without one)
 };
 }  // namespace rviz_projector

@@ -15,6 +15,7 @@
 
 #include "rviz_projector/core/lens_calibration.h"
 #include "rviz_projector/core/lens_check.h"
+#include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/pinhole_model.h"
 
 namespace rviz_projector
@@ -30,7 +31,8 @@ struct LensStatuses
   };
   Level camera_info_level = Warn;
   QString camera_info;    ///< "CameraInfo"
-  QString distortion;     ///< "Distortion" (warn)
+  QString distortion;     ///< "Distortion" (warn): a D that is not drawn
+  QString distortion_drawn;  ///< "Distortion" (ok): the model and D that are drawn (issue 24)
   QString field_of_view;  ///< "Field of view" (warn)
 };
 
@@ -65,7 +67,11 @@ public:
   bool hasInfo() const { return static_cast<bool>(last_); }
   /// A usable lens from the last CameraInfo.
   bool hasLens() const { return has_lens_; }
+  /// The lens's pixels: P's pinhole; with a distortion that is drawn, K's (the raw pixels, as
+  /// cv::projectPoints with K and D maps them).
   const PinholeModel& lens() const { return lens_; }
+  /// The distortion to draw through (none when D is zero or cannot be drawn: see statuses()).
+  const LensDistortion& distortion() const { return distortion_; }
   /// Seconds since the last CameraInfo arrived (steady clock; NaN without one).
   double secondsSinceInfo() const;
   /// frame_id of the last CameraInfo (empty without one).
@@ -89,6 +95,7 @@ private:
   PinholeModel lens_;
   bool has_lens_ = false;
   LensCheck check_;
+  LensDistortion distortion_;
   std::string narrow_view_;
 };
 }  // namespace rviz_projector

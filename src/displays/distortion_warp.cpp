@@ -1,0 +1,171 @@
+#include "rviz_projector/displays/distortion_warp.h"
+
+#include <OgreCamera.h>
+#include <OgreHardwarePixelBuffer.h>
+#include <OgreManualObject.h>
+#include <OgreMaterialManager.h>
+#include <OgrePass.h>
+#include <OgreRenderTexture.h>
+#include <OgreResourceGroupManager.h>
+#include <OgreRoot.h>
+#include <OgreSceneManager.h>
+#include <OgreSceneManagerEnumerator.h>
+#include <OgreSceneNode.h>
+#include <OgreTechnique.h>
+#include <OgreTextureManager.h>
+#include <OgreTextureUnitState.h>
+#include <OgreViewport.h>
+
+#include "rviz_projector/displays/ogre_name.h"
+
+namespace rviz_projector
+{
+DistortionWarp::DistortionWarp(Ogre::Camera* scene_camera, Ogre::RenderTargetListener* listener)
+  : scene_camera_(scene_camera)
+  , listener_(listener)
+  , warp_scene_(Ogre::Root::getSingleton().createSceneManager(Ogre::DefaultSceneManagerFactory::FACTORY_TYPE_NAME,
+                                                              uniqueOgreName("rviz_projector_warp_scene_")))
+  , warp_camera_(warp_scene_->createCamera(uniqueOgreName("rviz_projector_warp_camera_")))
+  , mesh_(warp_scene_->createManualObject(uniqueOgreName("rviz_projector_warp_mesh_")))
+{
+  material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_warp_material_"),
+                                                           Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
+  pass->setLightingEnabled(false);
+  pass->setDepthCheckEnabled(false);
+  pass->setDepthWriteEnabled(false);
+  pass->setCullingMode(Ogre::CULL_NONE);
+  material_->setReceiveShadows(false);
+  mesh_->setUseIdentityProjection(true);
+  mesh_->setUseIdentityView(true);
+  mesh_->setDynamic(false);
+  warp_scene_->getRootSceneNode()->attachObject(mesh_);
+}
+
+DistortionWarp::~DistortionWarp()
+{
+  clear();
+  warp_scene_->getRootSceneNode()->detachAllObjects();
+  warp_scene_->destroyManualObject(mesh_);
+  warp_scene_->destroyCamera(warp_camera_);
+  Ogre::Root::getSingleton().destroySceneManager(warp_scene_);
+  Ogre::MaterialManager::getSingleton().remove(material_->getName(), material_->getGroup());
+}
+
+void DistortionWarp::clear()
+{
+  mesh_->clear();
+  if (render_texture_)
+  {
+    render_texture_->removeListener(listener_);
+    render_texture_->removeAllViewports();
+    render_texture_ = nullptr;
+    viewport_ = nullptr;
+  }
+  if (texture_)
+  {
+    Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
+    pass->removeAllTextureUnitStates();
+    Ogre::TextureManager::getSingleton().remove(texture_->getName(), texture_->getGroup());
+    texture_.reset();
+  }
+  grid_ = WarpGrid();
+  grid_error_ = 0.0;
+}
+
+std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDistortion& distortion)
+{
+  clear();
+  if (distortion.none())
+  {
+    return std::string();
+  }
+  grid_ = makeWarpGrid(raw_lens, distortion);
+  grid_error_ = warpGridError(grid_, raw_lens, distortion);
+  const PinholeModel& ideal = grid_.ideal_lens;
+  try
+  {
+    texture_ = Ogre::TextureManager::getSingleton().createManual(
+        uniqueOgreName("rviz_projector_warp_texture_"), Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME,
+        Ogre::TEX_TYPE_2D, ideal.width(), ideal.height(), 0, Ogre::PF_BYTE_RGBA, Ogre::TU_RENDERTARGET);
+  }
+  catch (const Ogre::Exception& e)
+  {
+    const std::string error = "the " + std::to_string(ideal.width()) + "x" + std::to_string(ideal.height()) +
+                              " texture of the distortion warp could not be made: " + e.getDescription();
+    clear();
+    return error;
+  }
+  render_texture_ = texture_->getBuffer()->getRenderTarget();
+  render_texture_->setAutoUpdated(false);
+  render_texture_->addListener(listener_);
+  viewport_ = render_texture_->addViewport(scene_camera_);
+  viewport_->setOverlaysEnabled(false);
+  viewport_->setClearEveryFrame(true);
+  viewport_->setBackgroundColour(background_);
+  viewport_->setVisibilityMask(visibility_mask_);
+
+  Ogre::TextureUnitState* unit = material_->getTechnique(0)->getPass(0)->createTextureUnitState(texture_->getName());
+  unit->setTextureAddressingMode(Ogre::TextureUnitState::TAM_CLAMP);
+  unit->setTextureFiltering(Ogre::TFO_BILINEAR);
+  unit->setNumMipmaps(0);
+
+  // The cells: raw pixel edges -> normalised device coordinates of the output viewport (which
+  // holds the raw image exactly); each vertex samples the ideal render where its ray lands.
+  const double w = raw_lens.width();
+  const double h = raw_lens.height();
+  mesh_->estimateVertexCount(grid_.raw.size());
+  mesh_->estimateIndexCount(6 * grid_.columns * grid_.rows);
+  mesh_->begin(material_->getName(), Ogre::RenderOperation::OT_TRIANGLE_LIST,
+               Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  for (std::size_t v = 0; v < grid_.raw.size(); ++v)
+  {
+    const Vec2& p = grid_.raw[v];
+    mesh_->position(static_cast<Ogre::Real>(2.0 * (p.x + 0.5) / w - 1.0),
+                    static_cast<Ogre::Real>(1.0 - 2.0 * (p.y + 0.5) / h), 0.0f);
+    const Vec2 t = grid_.textureCoordinate(v);
+    mesh_->textureCoord(static_cast<Ogre::Real>(t.x), static_cast<Ogre::Real>(t.y));
+  }
+  for (std::uint32_t j = 0; j < grid_.rows; ++j)
+  {
+    for (std::uint32_t i = 0; i < grid_.columns; ++i)
+    {
+      const auto a = static_cast<Ogre::uint32>(grid_.vertexIndex(i, j));
+      const auto b = static_cast<Ogre::uint32>(grid_.vertexIndex(i + 1, j));
+      const auto c = static_cast<Ogre::uint32>(grid_.vertexIndex(i, j + 1));
+      const auto d = static_cast<Ogre::uint32>(grid_.vertexIndex(i + 1, j + 1));
+      mesh_->triangle(a, b, c);  // the split of core warpGridError
+      mesh_->triangle(b, d, c);
+    }
+  }
+  mesh_->end();
+  mesh_->setBoundingBox(Ogre::AxisAlignedBox::BOX_INFINITE);  // in image space: never culled
+  return std::string();
+}
+
+void DistortionWarp::setBackground(const Ogre::ColourValue& colour)
+{
+  background_ = colour;
+  if (viewport_)
+  {
+    viewport_->setBackgroundColour(colour);
+  }
+}
+
+void DistortionWarp::setVisibilityMask(std::uint32_t mask)
+{
+  visibility_mask_ = mask;
+  if (viewport_)
+  {
+    viewport_->setVisibilityMask(mask);
+  }
+}
+
+void DistortionWarp::renderIdeal()
+{
+  if (render_texture_)
+  {
+    render_texture_->update(false);
+  }
+}
+}  // namespace rviz_projector
