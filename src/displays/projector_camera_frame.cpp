@@ -96,8 +96,9 @@ void ProjectorCameraDisplay::updateFootprint()
     overlay_->setFootprintVisible(false);
     return;
   }
-  const FloorOverlayResult lit = overlay_->update(lens(), pipeline_.poseFollower().pose().optical_to_fixed, own_changes_, props_.footprint->getBool(),
-                                                  props_.testPattern() == TestPattern::MetricGrid);
+  const FloorOverlayResult lit =
+      overlay_->update(lens(), pipeline_.lensSource().distortion(), pipeline_.poseFollower().pose().optical_to_fixed,
+                       own_changes_, props_.footprint->getBool(), props_.testPattern() == TestPattern::MetricGrid);
   updateFootprintVisible();
   own_changes_ += lit.grid_changed ? 1 : 0;  // the grid is drawn anew
   if (lit.status_changed)
@@ -212,7 +213,8 @@ void ProjectorCameraDisplay::renderNow()
   if (publish)
   {
     // Stamped with the time of the pose it was drawn from (the prediction's target when predicted).
-    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(), projectorFrame(),
+    image_publisher_->publish(output_->renderWindow(), output_->imageRect(), lens(),
+                              pipeline_.lensSource().distortion(), projectorFrame(),
                               pipeline_.imageStamp(ros::Time::now()));
     output_->swap();
   }

@@ -57,8 +57,9 @@ void ProjectorFloorOverlay::clearGrid()
   grid_triangles_.clear();
 }
 
-FloorOverlayResult ProjectorFloorOverlay::update(const PinholeModel& lens, const RigidTransform& optical_to_fixed,
-                                                 std::uint64_t revision, bool footprint, bool grid)
+FloorOverlayResult ProjectorFloorOverlay::update(const PinholeModel& lens, const LensDistortion& distortion,
+                                                 const RigidTransform& optical_to_fixed, std::uint64_t revision,
+                                                 bool footprint, bool grid)
 {
   FloorOverlayResult result;
   std::array<double, 12> key{};
@@ -74,7 +75,7 @@ FloorOverlayResult ProjectorFloorOverlay::update(const PinholeModel& lens, const
   key_ = key;
   revision_ = revision;
   result.recomputed = true;
-  const FloorFootprint lit(lens, optical_to_fixed, kFrustumLength);
+  const FloorFootprint lit(lens, optical_to_fixed, kFrustumLength, distortion);
   result.complete = lit.complete();
   result.width = lit.width();
   result.depth = lit.depth();

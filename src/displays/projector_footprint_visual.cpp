@@ -47,7 +47,7 @@ void ProjectorFootprintVisual::update(const FloorFootprint& footprint)
 {
   const Ogre::ColourValue frustum_colour(1.0f, 1.0f, 0.3f, 1.0f);
   const Ogre::ColourValue floor_colour(0.3f, 1.0f, 1.0f, 1.0f);
-  // Always 16 vertices: after the first time the section and its vertex buffer are rewritten in
+  // Always 8 + 2 x 32 vertices: after the first time the section and its vertex buffer are rewritten in
   // place (no allocation while the robot drives).
   if (!lines_->getSections().empty())
   {
@@ -65,12 +65,14 @@ void ProjectorFootprintVisual::update(const FloorFootprint& footprint)
     lines_->position(toOgre(c[i]));
     lines_->colour(frustum_colour);
   }
-  for (int i = 0; i < 4; ++i)
+  // The lit area's outline: curved through a distorting lens (FloorFootprint::outline()).
+  const auto& outline = footprint.outline();
+  const Ogre::ColourValue& colour = footprint.complete() ? floor_colour : frustum_colour;
+  for (std::size_t i = 0; i < outline.size(); ++i)
   {
-    const Ogre::ColourValue& colour = footprint.complete() ? floor_colour : frustum_colour;
-    lines_->position(toOgre(c[i]));
+    lines_->position(toOgre(outline[i]));
     lines_->colour(colour);
-    lines_->position(toOgre(c[(i + 1) % 4]));
+    lines_->position(toOgre(outline[(i + 1) % outline.size()]));
     lines_->colour(colour);
   }
   lines_->end();

@@ -8,7 +8,7 @@
 namespace rviz_projector
 {
 sensor_msgs::CameraInfo cameraInfoOfImage(const PinholeModel& lens, const PixelRect& rect,
-                                          const std_msgs::Header& header)
+                                          const std_msgs::Header& header, const LensDistortion& distortion)
 {
   const PinholeModel shown =
       scaledLens(lens, static_cast<std::uint32_t>(std::max(0, rect.width)), static_cast<std::uint32_t>(std::max(0, rect.height)));
@@ -16,9 +16,10 @@ sensor_msgs::CameraInfo cameraInfoOfImage(const PinholeModel& lens, const PixelR
   info.header = header;
   info.width = shown.width();
   info.height = shown.height();
-  // The renderer draws an ideal pinhole: no distortion, whatever the source CameraInfo said.
-  info.distortion_model = "plumb_bob";
-  info.D.assign(5, 0.0);
+  // What the renderer drew: the ideal pinhole, or through the lens's D (normalised coordinates: the
+  // same D at any scale). A model it cannot draw was ignored: no distortion.
+  info.distortion_model = distortion.none() ? "plumb_bob" : modelName(distortion.model());
+  info.D = distortion.none() ? std::vector<double>(5, 0.0) : distortion.coefficients();
   info.K = {shown.fx(), 0.0, shown.cx(), 0.0, shown.fy(), shown.cy(), 0.0, 0.0, 1.0};
   info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
   info.P = {shown.fx(), 0.0, shown.cx(), shown.tx(), 0.0, shown.fy(), shown.cy(), shown.ty(), 0.0, 0.0, 1.0, 0.0};
@@ -61,7 +62,7 @@ bool ProjectorImagePublisher::due() const
 }
 
 bool ProjectorImagePublisher::publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens,
-                                      const std::string& frame, const ros::Time& stamp)
+                                      const LensDistortion& distortion, const std::string& frame, const ros::Time& stamp)
 {
   last_ = ros::WallTime::now();
   unsigned ww = 0, wh = 0;
@@ -87,7 +88,7 @@ bool ProjectorImagePublisher::publish(Ogre::RenderTarget* target, const PixelRec
   image_pub_.publish(image_);
   if (lens.width() > 0)
   {
-    info_pub_.publish(cameraInfoOfImage(lens, rect, image_.header));
+    info_pub_.publish(cameraInfoOfImage(lens, rect, image_.header, distortion));
   }
   return true;
 }

@@ -74,3 +74,43 @@ TEST(FloorFootprint, RaysAboveTheHorizonEndAtMaxDistance)
   FloorFootprint up(lens, pitchedDown(-0.5, 1.2), 8.0);
   EXPECT_LT(up.throwDistance(), 0.0);
 }
+
+TEST(FloorFootprint, ThroughABarrelLensTheOutlineFollowsTheUndistortedRays)
+{
+  // Looking straight down from 1 m: a ray (x, y, 1) meets the floor at world (x, -y). The lens
+  // k1 = -0.2, k2 = 0.05 sends the ideal ray r to the raw pixel at r (1 - 0.2 r^2 + 0.05 r^4); the
+  // outline's points are the floor points of the rays that land on the image's outer edge.
+  const PinholeModel lens(1280, 800, 1900, 1900, 639.5, 399.5);
+  const rviz_projector::LensDistortion wide(rviz_projector::LensDistortion::Model::PlumbBob, {-0.2, 0.05, 0, 0, 0});
+  const FloorFootprint pinhole(lens, lookingDown(1.0), 20.0);
+  const FloorFootprint f(lens, lookingDown(1.0), 20.0, wide);
+  ASSERT_TRUE(f.complete());
+  ASSERT_EQ(f.outline().size(), 4u * FloorFootprint::kEdgePoints);
+  const auto radial = [](double r) { return r * (1 - 0.2 * r * r + 0.05 * r * r * r * r); };
+  for (std::size_t i = 0; i < f.outline().size(); ++i)
+  {
+    // Each outline point, seen through the lens formula, lands on the image edge: a raw pixel
+    // with u = -0.5 or 1279.5, or v = -0.5 or 799.5.
+    const Vec3& p = f.outline()[i];
+    const double x = p.x, y = -p.y;  // the ray (x, y, 1)
+    const double r = std::hypot(x, y);
+    const double scale = radial(r) / r;
+    const double u = 639.5 + 1900 * x * scale;
+    const double v = 399.5 + 1900 * y * scale;
+    const double to_edge = std::min({std::abs(u + 0.5), std::abs(u - 1279.5), std::abs(v + 0.5), std::abs(v - 799.5)});
+    EXPECT_LT(to_edge, 1e-6) << "outline point " << i << " lands on raw pixel (" << u << ", " << v << ")";
+    // Beyond the pinhole's outline where the lens reaches further (a barrel lens at its corners).
+    EXPECT_GE(std::hypot(p.x, p.y), std::hypot(pinhole.outline()[i].x, pinhole.outline()[i].y) - 1e-9);
+  }
+  // The top edge is a curve: its middle point is nearer the centre line than the chord's.
+  const Vec3& left = f.outline()[0];
+  const Vec3& middle = f.outline()[FloorFootprint::kEdgePoints / 2];
+  const Vec3& right = f.outline()[FloorFootprint::kEdgePoints];
+  EXPECT_NEAR(left.y, right.y, 1e-9) << "a centred lens: the top edge's ends are level";
+  EXPECT_LT(std::abs(middle.y), std::abs(left.y)) << "a barrel lens bows the lit edge outwards at the corners";
+  // The pinhole's outline is the rectangle: its edge points lie on the straight edges.
+  for (int k = 0; k < FloorFootprint::kEdgePoints; ++k)
+  {
+    EXPECT_NEAR(pinhole.outline()[k].y, pinhole.corners()[0].y, 1e-9);
+  }
+}

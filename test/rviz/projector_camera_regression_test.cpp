@@ -64,6 +64,11 @@ protected:
     info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(kInfoTopic, 1, true);
   }
 
+  /// A `info` image in an 854x480 window (scaled and letterboxed), published as an Image with its
+  /// CameraInfo: the target disc is where image_geometry, from the published CameraInfo alone, says
+  /// it is (through the published D when there is one). `published_out`: that CameraInfo.
+  void imageOutputMatchesItsCameraInfo(const sensor_msgs::CameraInfo& info, sensor_msgs::CameraInfo& published_out);
+
   ProjectorCameraDisplay* addProjector(const QString& name)
   {
     auto* p = dynamic_cast<ProjectorCameraDisplay*>(rviz_->addDisplay("rviz_projector/ProjectorCamera", name));
@@ -286,7 +291,12 @@ cv::Point2d projectedDiscCentroid(const image_geometry::PinholeCameraModel& mode
     const double a = 2.0 * M_PI * i / kPoints;
     const double r = 0.5 * diameter;
     const tf2::Vector3 p = map_to_optical * tf2::Vector3(x + r * std::cos(a), y + r * std::sin(a), 0);
-    outline.push_back(model.project3dToPixel(cv::Point3d(p.x(), p.y(), p.z())));
+    // Through the published D when there is one: image_geometry's unrectifyPoint of the pinhole
+    // pixel (cv::projectPoints with K and D: the raw pixel).
+    const cv::Point2d pinhole = model.project3dToPixel(cv::Point3d(p.x(), p.y(), p.z()));
+    outline.push_back(model.distortionCoeffs().empty() || cv::countNonZero(model.distortionCoeffs()) == 0 ?
+                          pinhole :
+                          model.unrectifyPoint(pinhole));
   }
   double area = 0, sx = 0, sy = 0;
   for (int i = 0; i < kPoints; ++i)
@@ -302,10 +312,9 @@ cv::Point2d projectedDiscCentroid(const image_geometry::PinholeCameraModel& mode
 }
 }  // namespace
 
-TEST_F(ProjectorRegression, ImageOutputOfAScaledWindowPublishesAMatchingCameraInfo)
+void ProjectorRegression::imageOutputMatchesItsCameraInfo(const sensor_msgs::CameraInfo& info,
+                                                          sensor_msgs::CameraInfo& published_out)
 {
-  // A 1024x768 image in an 854x480 window: scaled by 0.625 and letterboxed.
-  const sensor_msgs::CameraInfo info = rviz_projector_test::cameraInfo(kOptical, 1024, 768, 900, 530.3, 360.8);
   const double disc_x = 1.3, disc_y = 0.15, diameter = 0.08;
   auto* target = dynamic_cast<ProjectedPathDisplay*>(rviz_->addDisplay("rviz_projector/ProjectedPath", "Target"));
   ASSERT_NE(target, nullptr);
@@ -367,6 +376,28 @@ TEST_F(ProjectorRegression, ImageOutputOfAScaledWindowPublishesAMatchingCameraIn
               image->width, image->height, published->width, published->height, published->P[0], published->P[2],
               published->P[6], u, v, green, expected.x, expected.y, error);
   EXPECT_LE(error, 0.25);
+  published_out = *published;
+}
+
+TEST_F(ProjectorRegression, ImageOutputOfAScaledWindowPublishesAMatchingCameraInfo)
+{
+  // A 1024x768 image in an 854x480 window: scaled by 0.625 and letterboxed.
+  sensor_msgs::CameraInfo published;
+  imageOutputMatchesItsCameraInfo(rviz_projector_test::cameraInfo(kOptical, 1024, 768, 900, 530.3, 360.8), published);
+  EXPECT_TRUE(std::all_of(published.D.begin(), published.D.end(), [](double d) { return d == 0.0; }));
+}
+
+TEST_F(ProjectorRegression, ImageOutputThroughADistortingLensPublishesItsD)
+{
+  // Issue 24: the same through a wide-angle lens; the Image shows the warped picture and its
+  // CameraInfo carries the lens's D (unchanged by the scaling), so image_geometry finds the disc.
+  sensor_msgs::CameraInfo info = rviz_projector_test::cameraInfo(kOptical, 1024, 768, 900, 530.3, 360.8);
+  info.distortion_model = "plumb_bob";
+  info.D = {-0.2, 0.05, 0.0, 0.0, 0.0};
+  sensor_msgs::CameraInfo published;
+  imageOutputMatchesItsCameraInfo(info, published);
+  EXPECT_EQ(published.distortion_model, "plumb_bob");
+  EXPECT_EQ(std::vector<double>(published.D.begin(), published.D.end()), info.D);
 }
 
 // ---- Defect 7: screens and the windowed geometry ----------------------------------------------

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rviz_projector/core/floor_footprint.h"
+#include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/rigid_transform.h"
 #include "rviz_projector/core/vec2.h"
@@ -55,11 +56,12 @@ public:
 
   /**
    * Follows the projector. `optical_to_fixed`: pose of its optical frame in the fixed frame (floor
-   * at z = 0); `revision` changes whenever the lens or a setting changed. Draws the footprint lines
-   * when `footprint`, the metric grid when `grid`.
+   * at z = 0); `distortion` the lens's D (the outline follows it); `revision` changes whenever the
+   * lens or a setting changed. Draws the footprint lines when `footprint`, the metric grid when
+   * `grid`.
    */
-  FloorOverlayResult update(const PinholeModel& lens, const RigidTransform& optical_to_fixed, std::uint64_t revision,
-                            bool footprint, bool grid);
+  FloorOverlayResult update(const PinholeModel& lens, const LensDistortion& distortion,
+                            const RigidTransform& optical_to_fixed, std::uint64_t revision, bool footprint, bool grid);
   /// Forces the next update() to recompute (fixed frame changed, statuses were reset).
   void invalidate()
   {

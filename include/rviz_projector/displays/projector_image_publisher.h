@@ -13,6 +13,7 @@
 #include <sensor_msgs/Image.h>
 
 #include "rviz_projector/core/letterbox.h"
+#include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/pinhole_model.h"
 
 namespace Ogre
@@ -22,10 +23,11 @@ class RenderTarget;
 
 namespace rviz_projector
 {
-/// The CameraInfo of an image of `rect`'s size showing `lens`'s view (scaled, no distortion, no
-/// binning, no region of interest).
+/// The CameraInfo of an image of `rect`'s size showing `lens`'s view (scaled, no binning, no region
+/// of interest) through `distortion` (the warp draws it: its D, unchanged by scaling, in the message).
 sensor_msgs::CameraInfo cameraInfoOfImage(const PinholeModel& lens, const PixelRect& rect,
-                                          const std_msgs::Header& header);
+                                          const std_msgs::Header& header,
+                                          const LensDistortion& distortion = LensDistortion());
 
 class ProjectorImagePublisher
 {
@@ -40,8 +42,8 @@ public:
   /// with its CameraInfo. Returns false when nothing could be read.
   /// `stamp`: the time of the pose the image was rendered for (the prediction's target time when
   /// motion compensation predicted, else the pose's tf stamp; ROS now for a static pose).
-  bool publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens, const std::string& frame,
-               const ros::Time& stamp);
+  bool publish(Ogre::RenderTarget* target, const PixelRect& rect, const PinholeModel& lens,
+               const LensDistortion& distortion, const std::string& frame, const ros::Time& stamp);
 
 private:
   ros::Publisher image_pub_;
