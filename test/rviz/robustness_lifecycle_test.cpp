@@ -1,5 +1,8 @@
 // Lifecycle: add/remove cycles, topic and fixed-frame changes, reset, config reloads. Part of the bad-input matrix of issue 4 in a real rviz (robustness_fixtures.h);
 // run by test/rviz/robustness_lifecycle.test.
+#include <OgreRoot.h>
+#include <OgreTextureManager.h>
+
 #include "robustness_fixtures.h"
 
 // ---- Lifecycle ------------------------------------------------------------------------------
@@ -51,6 +54,54 @@ TEST_F(LifecycleRobustness, HundredCyclesOfEachDisplayLeaveNothingBehind)
   EXPECT_NE(late->visibilityBit(), 0u);
   ASSERT_TRUE(waitFor([&] { return late->hasLens() && late->outputWindow() && late->outputWindow()->isVisible(); }));
   EXPECT_TRUE(waitFor([&] { return countColour(grabProjector(late), kMagenta) > 100; }));
+  expectProjects("the first projector after the cycles");
+}
+
+TEST_F(LifecycleRobustness, CyclesOfADistortingProjectorLeaveNoTextureOrSceneBehind)
+{
+  // Issue 24: a projector whose lens has a D renders through a texture and a scene of its own
+  // (DistortionWarp); both go with the display, and with a lens that changes back to no D.
+  ros::Publisher distorted_pub = nh_.advertise<sensor_msgs::CameraInfo>("/robustness/distorted/camera_info", 1, true);
+  sensor_msgs::CameraInfo distorted = good_;
+  distorted.distortion_model = "plumb_bob";
+  distorted.D = {-0.2, 0.05, 0.0, 0.0, 0.0};
+  distorted_pub.publish(distorted);
+  const auto textures = [] {
+    std::size_t n = 0;
+    for (auto it = Ogre::TextureManager::getSingleton().getResourceIterator(); it.hasMoreElements(); it.moveNext())
+    {
+      ++n;
+    }
+    return n;
+  };
+  const auto scenes = [] { return Ogre::Root::getSingleton().getSceneManagers().size(); };
+  const auto before = counts();
+  const std::size_t textures_before = textures(), scenes_before = scenes();
+  for (int i = 0; i < 30; ++i)
+  {
+    auto* projector = dynamic_cast<ProjectorCameraDisplay*>(rviz_->addDisplay("rviz_projector/ProjectorCamera", "warped"));
+    ASSERT_NE(projector, nullptr);
+    projector->subProp("Topic")->setValue("/robustness/distorted/camera_info");
+    ASSERT_TRUE(waitFor([&] {
+      const Status s = statusOf(projector, "Distortion");
+      return s.present && s.level == rviz::StatusProperty::Ok;
+    })) << "cycle " << i << ": the warp never came up";
+    EXPECT_EQ(textures(), textures_before + 1) << "cycle " << i << ": one texture for the ideal view";
+    if (i % 2 == 1)
+    {
+      projector->subProp("Topic")->setValue(kInfoTopic);  // the same lens without D: the warp goes
+      ASSERT_TRUE(waitFor([&] { return !statusOf(projector, "Distortion").present; })) << "cycle " << i;
+      EXPECT_EQ(textures(), textures_before) << "cycle " << i << ": D zero keeps no texture";
+    }
+    spinFor(0.01);
+    delete projector;
+    QApplication::processEvents();
+  }
+  waitFor([&] { return counts() == before && textures() == textures_before; });
+  EXPECT_EQ(textures(), textures_before);
+  EXPECT_EQ(scenes(), scenes_before);
+  const auto after = counts();
+  EXPECT_TRUE(after == before) << "before: " << before.describe() << "\nafter:  " << after.describe();
   expectProjects("the first projector after the cycles");
 }
 
