@@ -75,7 +75,7 @@ protected:
   void SetUp() override
   {
     ProjectorCameraTest::SetUp();
-    start_ = ros::Time(std::floor(ros::WallTime::now().toSec()));
+    start_ = rviz_projector_test::monotonicTestStart();
     ros::Time::setNow(start_);  // simulated from here on
     // The test steps ROS time by hand: its rate against wall time means nothing. ROS time runs at
     // wall rate here unless a test says otherwise (the ClockPolicy the displays share).

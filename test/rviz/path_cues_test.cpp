@@ -72,7 +72,7 @@ protected:
   {
     ProjectorSceneTest::SetUp();
     // An even whole second: 1.5 Hz blinking (from time 0) is then lit in [0, 1/3) s after it.
-    start_ = ros::Time(2.0 * std::floor(ros::WallTime::now().toSec() / 2.0));
+    start_ = rviz_projector_test::monotonicTestStart(2.0);
     ros::Time::setNow(start_);
   }
 

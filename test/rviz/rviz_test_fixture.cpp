@@ -1,5 +1,6 @@
 #include "rviz_test_fixture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -214,5 +215,12 @@ sensor_msgs::CameraInfo cameraInfo(const std::string& frame, unsigned w, unsigne
 std::string describe(QRgb c)
 {
   return std::to_string(qRed(c)) + "," + std::to_string(qGreen(c)) + "," + std::to_string(qBlue(c));
+}
+ros::Time monotonicTestStart(double multiple)
+{
+  static double last = 0.0;
+  const double now = multiple * std::floor(ros::WallTime::now().toSec() / multiple);
+  last = std::max(now, multiple * std::ceil((last + 2.0) / multiple));
+  return ros::Time(last);
 }
 }  // namespace rviz_projector_test

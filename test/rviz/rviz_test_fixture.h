@@ -95,4 +95,10 @@ std::string describe(QRgb c);
 /// A transform parent -> child stamped now: translation and rotation.
 geometry_msgs::TransformStamped stampedTransform(const std::string& parent, const std::string& child, double x,
                                                 double y, double z, const Quaternion& rotation);
+/// Start time for a test that sets ROS time itself (ros::Time::setNow): a multiple of `multiple`
+/// seconds of wall time, at least 2 s after the previous test's start in this process. Test time
+/// never goes back from one test to the next: rviz resets every display when ROS time jumps back,
+/// at its next update, which could come after the test's first message and clear it (seen in CI
+/// under load).
+ros::Time monotonicTestStart(double multiple = 1.0);
 }  // namespace rviz_projector_test
