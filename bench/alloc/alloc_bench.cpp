@@ -14,7 +14,11 @@
 //                main thread, for comparison
 //   frame-clock  the display's per-tick bookkeeping (ProjectorFrameClock::frameDone: the frame
 //                rate meter's sample), outside renderNow()
-// and the process RSS before and after the N frames of each.
+//   same-scene-warped, driving-warped  (issue 24) the same through a wide-angle lens (k1 = -0.2,
+//                k2 = 0.05): the ideal view rendered to a texture and warped into the window
+// and the process RSS before and after the N frames of each, and the wall time of the measured
+// call per frame (median, 95th percentile): the warp's cost is the warped row minus the same row
+// without D, in the same run (the counting allocator's overhead is in both).
 //
 // Run by scripts/bench --alloc (a ROS master and an X server; the two-screen Xorg dummy server
 // puts the projector window full screen on its own 1280x800 screen).
@@ -23,6 +27,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <csignal>
 #include <cmath>
@@ -32,6 +37,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <OgreRenderWindow.h>
 #include <QApplication>
@@ -41,6 +47,7 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <rviz/display.h>
+#include <rviz/properties/status_list.h>
 #include <rviz/render_panel.h>
 #include <rviz/visualization_manager.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -212,13 +219,25 @@ struct Row
   std::uint64_t rendered = 0;
   Counted total;
   double rss_before = 0, rss_after = 0;
+  std::vector<double> ms;  // wall time of each measured call
 };
+
+double percentile(std::vector<double> values, double q)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5)];
+}
 
 void print(const Row& r)
 {
-  std::printf("%-11s %7d %9llu %12.2f %12.1f %10.1f %10.1f %+9.2f\n", r.name.c_str(), r.frames,
+  std::printf("%-18s %7d %9llu %12.2f %12.1f %10.1f %10.1f %+9.2f %9.3f %9.3f\n", r.name.c_str(), r.frames,
               static_cast<unsigned long long>(r.rendered), static_cast<double>(r.total.allocations) / r.frames,
-              static_cast<double>(r.total.bytes) / r.frames, r.rss_before, r.rss_after, r.rss_after - r.rss_before);
+              static_cast<double>(r.total.bytes) / r.frames, r.rss_before, r.rss_after, r.rss_after - r.rss_before,
+              percentile(r.ms, 0.5), percentile(r.ms, 0.95));
   std::fflush(stdout);
 }
 }  // namespace
@@ -300,8 +319,8 @@ int main(int argc, char** argv)
   std::printf("# output window %ux%u%s, %d frames per row after %d warm-up frames\n", rw->getWidth(),
               rw->getHeight(), projector->outputWindow()->isFullScreenOn() ? " full screen" : " windowed", frames,
               warmup);
-  std::printf("%-11s %7s %9s %12s %12s %10s %10s %9s\n", "scenario", "frames", "rendered", "allocs/frame",
-              "bytes/frame", "RSS0 MiB", "RSS1 MiB", "dRSS MiB");
+  std::printf("%-18s %7s %9s %12s %12s %10s %10s %9s %9s %9s\n", "scenario", "frames", "rendered", "allocs/frame",
+              "bytes/frame", "RSS0 MiB", "RSS1 MiB", "dRSS MiB", "ms med", "ms p95");
 
   // One scenario: `before` runs uncounted before each frame (events, tf), `frame` is counted.
   auto run = [&](const std::string& name, auto before, auto frame) {
@@ -320,7 +339,9 @@ int main(int argc, char** argv)
       spin(0.0);  // rviz's own update and the display's frame clock run here, uncounted
       before(warmup + i);
       const std::uint64_t r0 = projector->framesRendered();
+      const auto t0 = std::chrono::steady_clock::now();
       const Counted c = counted(frame);
+      row.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       row.rendered += projector->framesRendered() - r0;
       row.total.allocations += c.allocations;
       row.total.bytes += c.bytes;
@@ -329,19 +350,18 @@ int main(int argc, char** argv)
     print(row);
   };
   auto render_now = [&] { projector->renderNow(); };
+  // 0.5 m/s along a gentle curve at 60 frames/s.
+  auto drive = [&](int i) {
+    const double t = i / 60.0;
+    tf.setTransform(projectorPose("alloc_bench_driving", 0.5 * t, 0.1 * std::sin(0.5 * t), 0.2 * std::sin(0.3 * t),
+                                  ros::Time::now()),
+                    "alloc_bench", false);
+  };
 
   run("steady", [](int) {}, render_now);
   run("same-scene", [](int) { rviz_projector::ProjectionChangeCounter::bump(); }, render_now);
   projector->subProp("Frame")->setValue("alloc_bench_driving");
-  run("driving",
-      [&](int i) {
-        // 0.5 m/s along a gentle curve at 60 frames/s.
-        const double t = i / 60.0;
-        tf.setTransform(projectorPose("alloc_bench_driving", 0.5 * t, 0.1 * std::sin(0.5 * t), 0.2 * std::sin(0.3 * t),
-                                      ros::Time::now()),
-                        "alloc_bench", false);
-      },
-      render_now);
+  run("driving", drive, render_now);
   Ogre::RenderWindow* window = projector->outputWindow()->renderWindow();
   run("ogre-only", [](int) {},
       [&] {
@@ -351,6 +371,38 @@ int main(int argc, char** argv)
   rviz_projector::ProjectorFrameClock clock;
   std::uint64_t ticks = 0;
   run("frame-clock", [](int) {}, [&] { clock.frameDone(++ticks, false); });
+
+  // Issue 24: the same through a wide-angle lens (the warp: texture + mesh pass).
+  info.D = { -0.2, 0.05, 0, 0, 0 };
+  info_pub.publish(info);
+  // The projector says it draws through the lens: its "Distortion" status, at level Ok.
+  auto warped = [&] {
+    for (int i = 0; i < projector->numChildren(); ++i)
+    {
+      if (auto* list = dynamic_cast<rviz::StatusList*>(projector->childAt(i)))
+      {
+        for (int j = 0; j < list->numChildren(); ++j)
+        {
+          auto* status = dynamic_cast<rviz::StatusProperty*>(list->childAt(j));
+          if (status && status->getName() == "Distortion")
+          {
+            return status->getLevel() == rviz::StatusProperty::Ok;
+          }
+        }
+      }
+    }
+    return false;
+  };
+  if (!waitFor(warped, 5.0))
+  {
+    std::fprintf(stderr, "alloc_bench: the projector does not draw through the distorted lens\n");
+    return 1;
+  }
+  spin(1.0);
+  projector->subProp("Frame")->setValue("alloc_bench_fixed");
+  run("same-scene-warped", [](int) { rviz_projector::ProjectionChangeCounter::bump(); }, render_now);
+  projector->subProp("Frame")->setValue("alloc_bench_driving");
+  run("driving-warped", drive, render_now);
 
   delete manager;
   delete panel;

@@ -16,6 +16,7 @@
 #include <OgreTextureUnitState.h>
 #include <OgreViewport.h>
 
+#include "rviz_projector/displays/image_space.h"
 #include "rviz_projector/displays/ogre_name.h"
 
 namespace rviz_projector
@@ -28,17 +29,8 @@ DistortionWarp::DistortionWarp(Ogre::Camera* scene_camera, Ogre::RenderTargetLis
   , warp_camera_(warp_scene_->createCamera(uniqueOgreName("rviz_projector_warp_camera_")))
   , mesh_(warp_scene_->createManualObject(uniqueOgreName("rviz_projector_warp_mesh_")))
 {
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_warp_material_"),
-                                                           Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
-  Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
-  pass->setLightingEnabled(false);
-  pass->setDepthCheckEnabled(false);
-  pass->setDepthWriteEnabled(false);
-  pass->setCullingMode(Ogre::CULL_NONE);
-  material_->setReceiveShadows(false);
-  mesh_->setUseIdentityProjection(true);
-  mesh_->setUseIdentityView(true);
-  mesh_->setDynamic(false);
+  material_ = createImageSpaceMaterial("rviz_projector_warp_material_");
+  useImageSpace(mesh_);
   warp_scene_->getRootSceneNode()->attachObject(mesh_);
 }
 

@@ -11,6 +11,7 @@
 #include <OgreSceneNode.h>
 #include <OgreTechnique.h>
 
+#include "rviz_projector/displays/image_space.h"
 #include "rviz_projector/displays/ogre_name.h"
 
 namespace rviz_projector
@@ -31,18 +32,9 @@ ProjectorCrosshairs::ProjectorCrosshairs()
   , camera_(scene_manager_->createCamera(uniqueOgreName("rviz_projector_crosshairs_camera_")))
   , quads_object_(scene_manager_->createManualObject(uniqueOgreName("rviz_projector_crosshairs_")))
 {
-  material_ = Ogre::MaterialManager::getSingleton().create(uniqueOgreName("rviz_projector_crosshairs_material_"),
-                                                           Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
-  Ogre::Pass* pass = material_->getTechnique(0)->getPass(0);
-  pass->setLightingEnabled(false);
-  pass->setDepthCheckEnabled(false);
-  pass->setDepthWriteEnabled(false);
-  pass->setCullingMode(Ogre::CULL_NONE);
-  pass->setVertexColourTracking(Ogre::TVC_DIFFUSE);
-  material_->setReceiveShadows(false);
-  quads_object_->setUseIdentityProjection(true);
-  quads_object_->setUseIdentityView(true);
-  quads_object_->setDynamic(false);
+  material_ = createImageSpaceMaterial("rviz_projector_crosshairs_material_");
+  material_->getTechnique(0)->getPass(0)->setVertexColourTracking(Ogre::TVC_DIFFUSE);
+  useImageSpace(quads_object_);
   scene_manager_->getRootSceneNode()->attachObject(quads_object_);
 }
 
