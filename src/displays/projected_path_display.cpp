@@ -284,10 +284,15 @@ void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path con
   if (context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error))
   {
     // Right after a backward jump of ROS time tf is empty until the bag plays it again: expected.
+    // Otherwise the path waits in the tf filter: a warning, an error if it is still waiting after
+    // kTfWaitGrace (drainQueue).
     const bool expected = RosClock::shared().policy().justStartedOrJumpedBack();
-    setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
-              QString(expected ? kWaitingForTfAfterJump : "") +
-                  QString::fromStdString(error) + " (the path is drawn once the transform is available)");
+    tf_waiting_ = true;
+    tf_wait_since_ = std::chrono::steady_clock::now();
+    tf_wait_error_ = QString::fromStdString(error) + " (the path is drawn once the transform is available)";
+    setStatus(rviz::StatusProperty::Warn, "Transform",
+              QString(expected ? kWaitingForTfAfterJump : "Waiting for the transform (an error after 1 s): ") +
+                  tf_wait_error_);
   }
 }
 
@@ -305,6 +310,7 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
     return;
   }
   setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");
+  tf_waiting_ = false;
   const RigidTransform to_fixed = RigidTransform::fromQuaternion(
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
   dropped_poses_ = pathToFloorPoints(*msg, to_fixed, floor_points_);
@@ -321,6 +327,11 @@ void ProjectedPathDisplay::drainQueue()
     cue_source_.clear();
   }
   drain();
+  if (tf_waiting_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - tf_wait_since_).count() > kTfWaitGrace)
+  {
+    tf_waiting_ = false;  // reported once; a path that passes sets Transform OK
+    setStatus(rviz::StatusProperty::Error, "Transform", tf_wait_error_);
+  }
   if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
   {
     drawCues(cueTime(), false);  // a new goal state shows at once, whatever the clock does

@@ -171,6 +171,13 @@ TEST_F(PathRobustness, FrameAppearingLaterRecoversByItself)
   nav_msgs::Path p = makePath("late_odom", line(Vec3{0, 0, 0}, Vec3{3, 0, 0}, 31));
   p.header.stamp = ros::Time::now();
   publisher_.publish(p);
+  // First a warning while the path waits for its tf (a path a moment ahead of its tf is normal),
+  // an error once it has waited a second.
+  ASSERT_TRUE(waitFor([&] {
+    const Status s = statusOf(display_, "Transform");
+    return s.present && s.level == rviz::StatusProperty::Warn &&
+           s.text.startsWith("Waiting for the transform (an error after 1 s): ");
+  })) << text(statusOf(display_, "Transform"));
   ASSERT_TRUE(waitFor([&] {
     const Status s = statusOf(display_, "Transform");
     return s.present && s.level == rviz::StatusProperty::Error;

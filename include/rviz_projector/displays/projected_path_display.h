@@ -140,6 +140,13 @@ private:
   nav_msgs::Path::ConstPtr last_msg_;  // last path drawn (null: none yet); floor_points_ hold it
   bool latched_publisher_ = false;  ///< the last path came from a latched publisher (Reset subscribes again)
   std::chrono::steady_clock::time_point last_arrival_;  // when last_msg_ arrived (steady wall clock)
+  /// A path whose transform is not there yet waits in the tf filter: a warning, an error once it
+  /// has waited kTfWaitGrace (a path a moment ahead of its tf is normal: topics race, bags replay
+  /// them in the order they were recorded).
+  static constexpr double kTfWaitGrace = 1.0;
+  bool tf_waiting_ = false;
+  std::chrono::steady_clock::time_point tf_wait_since_;
+  QString tf_wait_error_;
   std::size_t dropped_poses_ = 0;
   PathTriangles triangles_;  // buffers kept between paths
   std::size_t mesh_builds_ = 0;
