@@ -35,6 +35,7 @@
 #include "rviz_projector/displays/distortion_warp.h"
 #include "rviz_projector/displays/projector_output.h"
 #include "rviz_projector/displays/projector_output_window.h"
+#include "rviz_projector/displays/projector_pattern.h"
 #include "rviz_projector/displays/projector_pose.h"
 #include "rviz_projector/displays/projector_view.h"
 #include "rviz_projector/displays/ros_clock.h"
@@ -51,6 +52,7 @@ ProjectorCameraDisplay::~ProjectorCameraDisplay()
   unsubscribe();
   image_publisher_.reset();
   output_.reset();  // listener, viewport, render window, widget
+  pattern_.reset();  // its camera was the viewport's while a pattern was shown
   warp_.reset();    // its texture's viewport uses the view's camera
   gate_.reset();
   overlay_.reset();
@@ -89,6 +91,7 @@ void ProjectorCameraDisplay::onInitialize()
   image_publisher_ = std::make_unique<ProjectorImagePublisher>();
   overlay_ = std::make_unique<ProjectorFloorOverlay>(scene_manager_, scene_node_);
   crosshairs_ = std::make_unique<ProjectorCrosshairs>();
+  pattern_ = std::make_unique<ProjectorPattern>();
   warp_ = std::make_unique<DistortionWarp>(view_->camera(), this);
 
   connect(qApp, SIGNAL(screenAdded(QScreen*)), this, SLOT(updateOutput()));  // when enabled
@@ -210,12 +213,36 @@ void ProjectorCameraDisplay::subscribe()
   setStatus(error.empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Error, "Topic",
             error.empty() ? QString("OK") : "Error subscribing: " + QString::fromStdString(error));
   updateMotionOdometry();
+  updatePatternTopic();
 }
 
 void ProjectorCameraDisplay::unsubscribe()
 {
   pipeline_.unsubscribeLens();
   pipeline_.setOdometryTopic(std::string());
+  if (pattern_)
+  {
+    pattern_->unsubscribe();
+    deleteStatus("Pattern");
+  }
+}
+
+void ProjectorCameraDisplay::updatePatternTopic()
+{
+  if (!pattern_)
+  {
+    return;
+  }
+  markChanged();  // a pattern shown goes
+  const std::string error = pattern_->subscribe(isEnabled() ? props_.pattern_topic->getTopicStd() : std::string());
+  if (error.empty())
+  {
+    deleteStatus("Pattern");
+  }
+  else
+  {
+    setStatus(rviz::StatusProperty::Error, "Pattern", "Error subscribing: " + QString::fromStdString(error));
+  }
 }
 
 void ProjectorCameraDisplay::updateMotionOdometry()

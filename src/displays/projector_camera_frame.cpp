@@ -4,6 +4,7 @@
 // asks the pipeline for the pose (prepareFrame), updates the overlay and crosshairs, and renders
 // only when the ProjectionGate says the projector would show something new.
 #include <algorithm>
+#include <chrono>
 
 #include <OgreViewport.h>
 
@@ -22,6 +23,7 @@
 #include "rviz_projector/displays/projector_floor_overlay.h"
 #include "rviz_projector/displays/projector_image_publisher.h"
 #include "rviz_projector/displays/projector_output.h"
+#include "rviz_projector/displays/projector_pattern.h"
 #include "rviz_projector/displays/projector_view.h"
 #include "rviz_projector/displays/ros_clock.h"
 
@@ -38,6 +40,35 @@ bool ProjectorCameraDisplay::updateCrosshairs()
   }
   warnIf(QStringLiteral("Test pattern"), problem.empty() ? QString() : "No crosshairs: " + QString::fromStdString(problem));
   return wanted;
+}
+
+void ProjectorCameraDisplay::pollPattern()
+{
+  if (pattern_->poll(hasLens() ? lens().width() : 0, hasLens() ? lens().height() : 0,
+                     props_.pattern_timeout->getFloat(), std::chrono::steady_clock::now()))
+  {
+    markChanged();
+    pattern_changed_ = true;
+  }
+  if (pattern_->takeStatusChange())
+  {
+    const QString text = QString::fromStdString(pattern_->statusText());
+    switch (pattern_->level())
+    {
+      case ProjectorPattern::Level::None:
+        deleteStatus(QStringLiteral("Pattern"));
+        break;
+      case ProjectorPattern::Level::Ok:
+        setStatus(rviz::StatusProperty::Ok, QStringLiteral("Pattern"), text);
+        break;
+      case ProjectorPattern::Level::Warn:
+        setStatus(rviz::StatusProperty::Warn, QStringLiteral("Pattern"), text);
+        break;
+      case ProjectorPattern::Level::Error:
+        setStatus(rviz::StatusProperty::Error, QStringLiteral("Pattern"), text);
+        break;
+    }
+  }
 }
 
 bool ProjectorCameraDisplay::updateCameraPose()
@@ -133,18 +164,22 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   }
   // The frustum never shows in the projector's own view.
   overlay_->setFootprintVisibilityFlags(~vis_bit_);
-  // The crosshairs' camera sees only them (nothing else is in its scene), with or without a pose.
-  // Through a distorting lens the window shows the warp of the ideal render (the crosshairs are
-  // drawn at raw pixels: never warped).
-  const bool warped = !crosshairs_shown_ && warp_->active();
-  Ogre::Camera* camera = crosshairs_shown_ ? crosshairs_->camera() : warped ? warp_->warpCamera() : view_->camera();
+  // A pattern, then the crosshairs: their cameras see only them (nothing else is in their scenes),
+  // with or without a pose. Through a distorting lens the window shows the warp of the ideal render
+  // (patterns and crosshairs are drawn at raw pixels: never warped).
+  const bool image_space = pattern_->shown() || crosshairs_shown_;
+  const bool warped = !image_space && warp_->active();
+  Ogre::Camera* camera = pattern_->shown() ? pattern_->camera()
+                         : crosshairs_shown_ ? crosshairs_->camera()
+                         : warped          ? warp_->warpCamera()
+                                           : view_->camera();
   if (Ogre::Viewport* viewport = output_->viewport(); viewport && viewport->getCamera() != camera)
   {
     viewport->setCamera(camera);
   }
   const bool drawable = hasLens() && pipeline_.poseOk();
   warp_->setVisibilityMask(drawable ? vis_bit_ : 0u);
-  output_->setVisibilityMask(crosshairs_shown_ ? ~0u : !drawable ? 0u : warped ? ~0u : vis_bit_);
+  output_->setVisibilityMask(image_space ? ~0u : !drawable ? 0u : warped ? ~0u : vis_bit_);
 }
 
 void ProjectorCameraDisplay::onFrameTimer()
@@ -160,6 +195,7 @@ void ProjectorCameraDisplay::onFrameTimer()
   {
     onLensChanged(lens_event);
   }
+  pollPattern();  // after the lens: a pattern must have the lens's size
   // One reading of the clock for this frame (ROS time, its rate, a backward jump: the pipeline
   // forgot every pose and prediction of before it).
   const ClockPolicy& clock = RosClock::shared().tick();
@@ -188,13 +224,14 @@ void ProjectorCameraDisplay::renderNow()
   {
     return;
   }
-  const bool publish = image_publisher_->due() && hasLens();
+  // A new pattern goes out on the Image output at once (a camera simulated from it sees it then).
+  const bool publish = hasLens() && (image_publisher_->due() || (pattern_changed_ && image_publisher_->active()));
   FrameState state;
   state.pose = view_->poseKey();
   state.changes = ProjectionChangeCounter::value() + own_changes_;
   state.visibility = gate_->visibilitySignature();
   state.image = output_->imageRect();
-  state.drawable = hasLens() && (pipeline_.poseOk() || crosshairs_shown_);
+  state.drawable = hasLens() && (pipeline_.poseOk() || crosshairs_shown_ || pattern_->shown());
   if (output_->takeRepaintRequest())
   {
     gate_->invalidate();  // exposed again: the window's content must be drawn anew
@@ -204,7 +241,7 @@ void ProjectorCameraDisplay::renderNow()
     ++frames_skipped_;  // the projector already shows exactly this
     return;
   }
-  if (!crosshairs_shown_)
+  if (!crosshairs_shown_ && !pattern_->shown())
   {
     warp_->renderIdeal();  // through a distorting lens: the ideal view first (nothing without one)
   }
@@ -218,6 +255,8 @@ void ProjectorCameraDisplay::renderNow()
                               pipeline_.imageStamp(ros::Time::now()));
     output_->swap();
   }
+  pattern_changed_ = false;
+  pattern_->frameShown();  // "/shown": the pattern (or the scene after it) went to the screen
   pipeline_.frameShown(frame_clock_.now(), frame_clock_.period());  // the render delay, measured
 }
 

@@ -16,6 +16,7 @@
 #include <rviz/properties/string_property.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
 
 #include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/displays/config_check.h"
@@ -121,6 +122,20 @@ ProjectorCameraProperties::ProjectorCameraProperties(rviz::Display* display)
                                                  image_output, SLOT(updateImageOutput()), display);
   image_rate->setMin(0.1f);
   image_rate->setMax(120.0f);
+  pattern_topic = new rviz::RosTopicProperty(
+      "Pattern topic", "/projector/pattern", QString::fromStdString(ros::message_traits::datatype<sensor_msgs::Image>()),
+      "sensor_msgs/Image shown 1:1 full screen instead of the scene while it arrives (calibrate_projector --camera "
+      "shows its structured-light patterns this way): exactly the projector's width x height, mono8/rgb8/bgr8/rgba8/"
+      "bgra8; a 0 x 0 image ends it. The header of each pattern is echoed on <topic>/shown (std_msgs/Header) once the "
+      "frame showing it went to the screen. Empty: off.",
+      display, SLOT(updatePatternTopic()), display);
+  pattern_timeout = new rviz::FloatProperty(
+      "Timeout", 10.0f,
+      "Seconds without a new pattern after which the scene comes back (a crashed sender never leaves the projector "
+      "on a pattern). 0: never.",
+      pattern_topic, nullptr, display);
+  pattern_timeout->setMin(0.0f);
+  pattern_timeout->setMax(3600.0f);
   createMotionProperties(display);
 }
 
@@ -209,6 +224,7 @@ QString ProjectorCameraProperties::checkLoaded(const rviz::Config& config) const
     check.number(config.mapGetChild(p->getName()), p);
   }
   check.number(config.mapGetChild(image_output->getName()).mapGetChild(image_rate->getName()), image_rate);
+  check.number(config.mapGetChild(pattern_topic->getName()).mapGetChild(pattern_timeout->getName()), pattern_timeout);
   check.number(config.mapGetChild(motion->getName()).mapGetChild(motion_input_lag->getName()), motion_input_lag);
   check.number(config.mapGetChild(motion->getName()).mapGetChild(motion_max->getName()), motion_max);
   return check.report();

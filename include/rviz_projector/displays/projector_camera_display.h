@@ -10,6 +10,7 @@
 //   ProjectorImagePublisher    optional Image + matching CameraInfo
 //   ProjectorFloorOverlay      frustum and lit area in rviz's main view, test grid on the floor
 //   ProjectorCrosshairs        the calibration crosshairs, in image space (Test pattern)
+//   ProjectorPattern           the Pattern topic: an image shown 1:1 instead of the scene, acknowledged
 //   ProjectorFrameClock        when to render: FramePacer (core) deadlines at the Frame rate limit /
 //                              screen refresh, early frames on changes, FrameRateMeter (core)
 //   StatusCache                the statuses shown: only changes reach rviz
@@ -56,6 +57,7 @@ class ProjectorFloorOverlay;
 class ProjectorImagePublisher;
 class ProjectorOutput;
 class ProjectorOutputWindow;
+class ProjectorPattern;
 class ProjectorView;
 
 class ProjectorCameraDisplay : public rviz::Display, public Ogre::RenderTargetListener
@@ -130,6 +132,8 @@ private Q_SLOTS:
   void fillScreenOptions();
   /// Subscribes to the Motion compensation's Odometry topic (when enabled).
   void updateMotionOdometry();
+  /// The Pattern topic changed (or the display was enabled/disabled): (un)subscribes it.
+  void updatePatternTopic();
 
 private:
   void subscribe();
@@ -153,6 +157,8 @@ private:
   void updateFootprint();
   /// Follows the lens and Rows/Columns; true while the projector shows the crosshairs.
   bool updateCrosshairs();
+  /// The Pattern topic's arrivals and timeout, and its "Pattern" status (onFrameTimer).
+  void pollPattern();
   /// Follows tf, the lens and the window; false when there is no window to draw into.
   bool prepareFrame();
   void updateFootprintVisible();
@@ -196,6 +202,8 @@ private:
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
   std::unique_ptr<ProjectorCrosshairs> crosshairs_;
   bool crosshairs_shown_ = false;
+  std::unique_ptr<ProjectorPattern> pattern_;  ///< the Pattern topic (a pattern replaces the scene)
+  bool pattern_changed_ = false;               ///< a new pattern since the last frame: publish it at once
   std::unique_ptr<DistortionWarp> warp_;  ///< drawing through the lens's D (inactive without one)
 };
 }  // namespace rviz_projector

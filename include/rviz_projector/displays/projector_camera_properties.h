@@ -80,6 +80,8 @@ struct ProjectorCameraProperties
   rviz::BoolProperty* image_output;
   rviz::StringProperty* image_topic;
   rviz::FloatProperty* image_rate;
+  rviz::RosTopicProperty* pattern_topic;  ///< sensor_msgs/Image shown 1:1 (ProjectorPattern); empty = off
+  rviz::FloatProperty* pattern_timeout;   ///< child of pattern_topic; seconds, 0 = never
   // Motion compensation (issue 14): a group; its values are read frame by frame.
   rviz::Property* motion;
   rviz::BoolProperty* motion_enabled;
