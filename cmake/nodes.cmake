@@ -2,7 +2,8 @@
 #   projector_info_publisher  calibration YAML -> latched sensor_msgs/CameraInfo
 #   path_to_markers           nav_msgs/Path -> the ProjectedPath arrows as a visualization_msgs/MarkerArray
 #   calibrate_projector       crosshair template, mount solver from measured floor points (issue 12;
-#                             src/calibration, with the calibration and mount file formats)
+#                             src/calibration, with the calibration and mount file formats); --camera:
+#                             structured light seen by the robot's camera (issue 24; cv_bridge)
 #   mount_tf_publisher        mount.yaml -> the static tf parent_frame -> projector frame (projector.launch)
 
 # yaml-cpp: to name the field at fault in a calibration file (camera_calibration_parsers only says
@@ -33,8 +34,10 @@ add_executable(calibrate_projector
   src/calibration/calibration_points_file.cpp
   src/calibration/calibration_report.cpp
   src/calibration/calibration_run.cpp
+  src/calibration/camera_calibration.cpp
   src/calibration/clicked_points.cpp
   ${${PROJECT_NAME}_MOUNT_FILE_SOURCES}
+  src/calibration/pattern_capture.cpp
 )
 add_executable(mount_tf_publisher
   ${${PROJECT_NAME}_CALIBRATION_SOURCES}

@@ -3,8 +3,10 @@
 //   calibrate_projector --pattern --camera-info CAL.yaml [--rows R --cols C] > points.yaml
 //   calibrate_projector --camera-info CAL.yaml --points points.yaml [--output mount.yaml]
 //   calibrate_projector --clicked-points --camera-info CAL.yaml --points-out points.yaml [--output mount.yaml]
+//   calibrate_projector --camera --camera-info CAL.yaml --image /camera/image_raw [--output mount.yaml]
 //
-// The modes live in calibration_run.cpp and clicked_points.cpp; this is only the dispatch.
+// The modes live in calibration_run.cpp, clicked_points.cpp and camera_calibration.cpp; this is only
+// the dispatch.
 // Exit status: 0 ok, 1 bad input or no solution (message on stderr, nothing written), 2 usage.
 
 #include <ros/ros.h>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "rviz_projector/calibration/calibrate_projector_options.h"
+#include "rviz_projector/calibration/camera_calibration.h"
 #include "rviz_projector/calibration/calibration_run.h"
 #include "rviz_projector/calibration/clicked_points.h"
 
@@ -21,14 +24,14 @@ int main(int argc, char** argv)
 {
   using rviz_projector::CalibrateOptions;
   std::vector<std::string> args(argv + 1, argv + argc);
-  bool clicked = false;
+  bool node = false;
   for (const std::string& arg : args)
   {
-    clicked = clicked || arg == "--clicked-points";
+    node = node || arg == "--clicked-points" || arg == "--camera";
   }
-  if (clicked)
+  if (node)
   {
-    // A ROS node only in this mode: ros::init also takes its remapping arguments (__name:= ...) out.
+    // A ROS node only in these modes: ros::init also takes its remapping arguments (__name:= ...) out.
     ros::init(argc, argv, "calibrate_projector", ros::init_options::AnonymousName);
     args.assign(argv + 1, argv + argc);
   }
@@ -49,6 +52,8 @@ int main(int argc, char** argv)
       return rviz_projector::runPattern(options, std::cout, std::cerr);
     case CalibrateOptions::Mode::ClickedPoints:
       return rviz_projector::runClickedPoints(options, std::cout, std::cerr);
+    case CalibrateOptions::Mode::Camera:
+      return rviz_projector::runCameraCalibration(options, std::cout, std::cerr);
     case CalibrateOptions::Mode::Solve:
       break;
   }

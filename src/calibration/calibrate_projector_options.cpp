@@ -28,6 +28,19 @@ bool parseTapeError(const std::string& text, double& metres)
   metres = mm / 1000.0;
   return true;
 }
+
+/// Seconds, 0 .. 10.
+bool parseSettle(const std::string& text, double& seconds)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(value >= 0.0 && value <= 10.0))
+  {
+    return false;
+  }
+  seconds = value;
+  return true;
+}
 }  // namespace
 
 std::string calibrateUsage()
@@ -37,13 +50,20 @@ std::string calibrateUsage()
          "      print the points template: every crosshair's id and pixel u, v, with x, y to fill in\n"
          "  calibrate_projector --camera-info CAL.yaml --points points.yaml [--output mount.yaml]\n"
          "                      [--rows R --cols C] [--tape-error MM]\n"
-         "                      [--fit-intrinsics [--output-calibration NEW_CAL.yaml]]\n"
+         "                      [--fit-intrinsics] [--fit-distortion] [--output-calibration NEW_CAL.yaml]\n"
          "      solve the projector's mount from the measured points and print it as projector.launch\n"
          "      arguments, with the residuals, outliers and the expected floor error\n"
          "  calibrate_projector --clicked-points --camera-info CAL.yaml --points-out points.yaml\n"
          "                      [--frame base_link] [--output mount.yaml] [--rows R --cols C]\n"
          "      a ROS node: asks for the crosshairs one by one, takes each from rviz's Publish Point tool\n"
          "      (/clicked_point), transforms it into --frame with tf, writes points.yaml and solves\n"
+         "  calibrate_projector --camera --camera-info CAL.yaml --image /camera/image_raw [--frame base_link]\n"
+         "                      [--floor-frame F] [--projector-frame F] [--pattern-topic T] [--settle S]\n"
+         "                      [--keep-distortion] [--output mount.yaml] [--output-calibration NEW_CAL.yaml]\n"
+         "      a ROS node: shows Gray code patterns through the running projector (the ProjectorCamera's\n"
+         "      Pattern topic, in rviz or projector_host), captures each with the robot's camera, decodes\n"
+         "      which projector pixel lights each camera pixel, and solves the mount and k1, k2 (fx, fy, cx,\n"
+         "      cy stay the file's: a flat floor cannot pin them)\n"
          "Options:\n"
          "  --camera-info CAL.yaml   the projector's calibration (path, package://pkg/path or file:///path)\n"
          "  --rows R, --cols C       crosshair pattern size, 1.." +
@@ -56,6 +76,17 @@ std::string calibrateUsage()
          "):\n"
          "                           sets the outlier threshold and the expected error\n"
          "  --fit-intrinsics         also fit fx, fy, cx, cy (needs points off the floor, z given)\n"
+         "  --fit-distortion         also fit k1, k2 (needs 8+ points spread to the image corners);\n"
+         "                           --output-calibration gets them\n"
+         "  --image TOPIC            --camera: the camera's sensor_msgs/Image (its CameraInfo on the sibling\n"
+         "                           camera_info topic, D included; default /camera/image_raw)\n"
+         "  --floor-frame F          --camera: the floor is z = 0 of F (default: --frame)\n"
+         "  --projector-frame F      --camera: the projector's optical frame in tf, the current mount as the\n"
+         "                           start (default projector_optical_frame; without it: solved from scratch)\n"
+         "  --pattern-topic T        --camera: the ProjectorCamera's Pattern topic (default /projector/pattern)\n"
+         "  --settle S               --camera: seconds from the projector's acknowledgement to the first camera\n"
+         "                           frame used (projector lag + camera exposure; default 0.15)\n"
+         "  --keep-distortion        --camera: keep the file's D instead of fitting k1, k2\n"
          "Exit status: 0 solved/written, 1 bad input or no solution (nothing written), 2 bad command line.\n";
 }
 
@@ -64,6 +95,7 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   out = CalibrateOptions();
   bool pattern = false;
   bool clicked = false;
+  bool camera = false;
   for (std::size_t i = 0; i < args.size(); ++i)
   {
     const std::string& arg = args[i];
@@ -87,9 +119,25 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
       out.fit_intrinsics = true;
       continue;
     }
+    if (arg == "--fit-distortion")
+    {
+      out.fit_distortion = true;
+      continue;
+    }
+    if (arg == "--camera")
+    {
+      camera = true;
+      continue;
+    }
+    if (arg == "--keep-distortion")
+    {
+      out.keep_distortion = true;
+      continue;
+    }
     std::string* text = nullptr;
     int* count = nullptr;
     double* tape_error = nullptr;
+    double* settle = nullptr;
     if (arg == "--camera-info")
       text = &out.camera_info;
     else if (arg == "--points")
@@ -102,6 +150,16 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
       text = &out.points_out;
     else if (arg == "--frame")
       text = &out.frame;
+    else if (arg == "--image")
+      text = &out.image;
+    else if (arg == "--pattern-topic")
+      text = &out.pattern_topic;
+    else if (arg == "--floor-frame")
+      text = &out.floor_frame;
+    else if (arg == "--projector-frame")
+      text = &out.projector_frame;
+    else if (arg == "--settle")
+      settle = &out.settle;
     else if (arg == "--rows")
       count = &out.rows;
     else if (arg == "--tape-error")
@@ -119,6 +177,13 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     {
       *text = value;
     }
+    else if (settle != nullptr)
+    {
+      if (!parseSettle(value, *settle))
+      {
+        return arg + " must be seconds from 0 to 10 (got '" + value + "')";
+      }
+    }
     else if (tape_error != nullptr)
     {
       if (!parseTapeError(value, *tape_error))
@@ -132,12 +197,14 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
              " (got '" + value + "')";
     }
   }
-  if (pattern && clicked)
+  if (int(pattern) + int(clicked) + int(camera) > 1)
   {
-    return "--pattern and --clicked-points exclude each other";
+    return "--pattern, --clicked-points and --camera exclude each other";
   }
-  out.mode = pattern ? CalibrateOptions::Mode::Pattern
-                     : clicked ? CalibrateOptions::Mode::ClickedPoints : CalibrateOptions::Mode::Solve;
+  out.mode = pattern   ? CalibrateOptions::Mode::Pattern
+             : clicked ? CalibrateOptions::Mode::ClickedPoints
+             : camera  ? CalibrateOptions::Mode::Camera
+                       : CalibrateOptions::Mode::Solve;
   if (out.camera_info.empty())
   {
     return "--camera-info CAL.yaml is required (the projector's calibration)";
@@ -168,9 +235,24 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   {
     return "--clicked-points needs --points-out points.yaml (the file the clicked points are written to)";
   }
-  if (!out.output_calibration.empty() && !out.fit_intrinsics)
+  if (camera && (!out.points.empty() || !out.points_out.empty() || out.fit_intrinsics || out.fit_distortion))
   {
-    return "--output-calibration needs --fit-intrinsics";
+    return "--camera takes no points (--points, --points-out) and fits k1, k2 itself (no --fit-intrinsics, "
+           "--fit-distortion)";
+  }
+  if (!camera && (out.keep_distortion || out.image != CalibrateOptions().image ||
+                  out.pattern_topic != CalibrateOptions().pattern_topic || !out.floor_frame.empty() ||
+                  out.projector_frame != CalibrateOptions().projector_frame || out.settle != CalibrateOptions().settle))
+  {
+    return "--image, --pattern-topic, --floor-frame, --projector-frame, --settle and --keep-distortion are for --camera";
+  }
+  if (camera && (out.image.empty() || out.pattern_topic.empty()))
+  {
+    return "--image and --pattern-topic need a topic";
+  }
+  if (!out.output_calibration.empty() && !out.fit_intrinsics && !out.fit_distortion && !camera)
+  {
+    return "--output-calibration needs --fit-intrinsics, --fit-distortion or --camera";
   }
   return "";
 }

@@ -142,11 +142,8 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
   LensDistortion distortion;
   if (LensDistortion::fromCalibration(c, distortion).ok() && !distortion.none() && !allZero(c.K))
   {
-    LensCalibration raw = c;
-    raw.P.fill(0.0);
-    raw.D.clear();
     PinholeModel raw_lens;
-    if (fromCalibration(raw, raw_lens).ok())
+    if (rawFromCalibration(c, raw_lens).ok())
     {
       const double corner = raw_lens.cornerRadius();
       const std::string fold = LensDistortion::foldError(distortion.foldCheck(corner), corner);
@@ -220,5 +217,12 @@ std::array<double, 16> PinholeModel::glProjectionMatrix(double near_clip, double
           0.0, 2.0 * fy_ / h, 2.0 * (cy_ + 0.5) / h - 1.0, -2.0 * ty_ / h,
           0.0, 0.0, -(far_clip + near_clip) / depth, -2.0 * far_clip * near_clip / depth,
           0.0, 0.0, -1.0, 0.0};
+}
+LensCheck PinholeModel::rawFromCalibration(const LensCalibration& calibration, PinholeModel& out)
+{
+  LensCalibration raw = calibration;
+  raw.P.fill(0.0);
+  raw.D.clear();
+  return fromCalibration(raw, out);
 }
 }  // namespace rviz_projector

@@ -321,7 +321,7 @@ void ProjectorCameraDisplay::updateWarp()
   const LensDistortion none;
   const LensDistortion& distortion = hasLens() ? pipeline_.lensSource().distortion() : none;
   const std::string error = hasLens() ? warp_->configure(lens(), distortion) : (warp_->clear(), std::string());
-  const QString drawn = pipeline_.lensSource().statuses(props_.topic->getTopic()).distortion_drawn;
+  const QString drawn = pipeline_.lensSource().distortionDrawn();
   if (!error.empty())
   {
     setStatus(rviz::StatusProperty::Warn, "Distortion",

@@ -84,10 +84,8 @@ void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
   {
     // Drawn through the distortion: the projector's pixels are K's (P is the rectified camera,
     // which a projector does not have). fromCalibration checked K with the fold check.
-    LensCalibration raw = calibration_;
-    raw.P.fill(0.0);
     PinholeModel raw_lens;
-    if (PinholeModel::fromCalibration(raw, raw_lens).ok())
+    if (PinholeModel::rawFromCalibration(calibration_, raw_lens).ok())
     {
       lens = raw_lens;
     }
@@ -141,13 +139,22 @@ LensStatuses ProjectorLensSource::statuses(const QString& topic) const
   }
   else
   {
-    s.distortion_drawn = QString("%1, D =").arg(modelName(distortion_.model()));
-    for (const double d : distortion_.coefficients())
-    {
-      s.distortion_drawn += QString(" %1").arg(d);
-    }
+    s.distortion_drawn = distortionDrawn();
   }
   s.field_of_view = QString::fromStdString(narrow_view_);
   return s;
+}
+QString ProjectorLensSource::distortionDrawn() const
+{
+  if (distortion_.none())
+  {
+    return QString();
+  }
+  QString text = QString("%1, D =").arg(modelName(distortion_.model()));
+  for (const double d : distortion_.coefficients())
+  {
+    text += QString(" %1").arg(d);
+  }
+  return text;
 }
 }  // namespace rviz_projector

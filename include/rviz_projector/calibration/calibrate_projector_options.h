@@ -25,6 +25,7 @@ struct CalibrateOptions
     Pattern,
     Solve,
     ClickedPoints,
+    Camera,  ///< --camera: structured light through the projector, seen by the robot's camera
   };
   Mode mode = Mode::Solve;
   std::string camera_info;         ///< --camera-info: calibration YAML (path, package://, file://)
@@ -38,6 +39,15 @@ struct CalibrateOptions
   bool fit_intrinsics = false;
   /// --tape-error MM: how accurately the points were measured (1 sigma), metres.
   double tape_error = MountSolverOptions().tape_error;
+  /// --fit-distortion: also fit k1, k2 from the floor points (always fitted with --camera).
+  bool fit_distortion = false;
+  // --camera (issue 24):
+  std::string image = "/camera/image_raw";          ///< --image: the camera's image (CameraInfo beside it)
+  std::string pattern_topic = "/projector/pattern";  ///< --pattern-topic: the ProjectorCamera's Pattern topic
+  std::string floor_frame;                           ///< --floor-frame: z = 0 of it is the floor ("" = --frame)
+  std::string projector_frame = "projector_optical_frame";  ///< --projector-frame: the current mount (a prior)
+  double settle = 0.15;  ///< --settle SECONDS after the projector acknowledged a pattern, before a frame counts
+  bool keep_distortion = false;  ///< --keep-distortion: --camera keeps the file's D instead of fitting k1, k2
 };
 
 /// Parses the arguments (without the program name). Returns "" or what is wrong with them.

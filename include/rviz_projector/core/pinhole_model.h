@@ -40,6 +40,9 @@ public:
    * corner of K's raw image is an error (LensDistortion::foldCheck): such a lens cannot be drawn.
    */
   static LensCheck fromCalibration(const LensCalibration& calibration, PinholeModel& out);
+  /// The pinhole of K alone (P taken as all zero, D ignored; ROI and binning applied as above): the
+  /// raw pixels of a distorting lens, which a projector draws through (it has no rectified image).
+  static LensCheck rawFromCalibration(const LensCalibration& calibration, PinholeModel& out);
 
   /// Pixel of a point in the optical frame; false when the point is not in front of the lens.
   bool project(const Vec3& point, Vec2& pixel) const;

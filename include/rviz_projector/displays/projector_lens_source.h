@@ -72,6 +72,8 @@ public:
   const PinholeModel& lens() const { return lens_; }
   /// The distortion to draw through (none when D is zero or cannot be drawn: see statuses()).
   const LensDistortion& distortion() const { return distortion_; }
+  /// "plumb_bob, D = k1 k2 ..." of the distortion drawn ("" when none).
+  QString distortionDrawn() const;
   /// Seconds since the last CameraInfo arrived (steady clock; NaN without one).
   double secondsSinceInfo() const;
   /// frame_id of the last CameraInfo (empty without one).

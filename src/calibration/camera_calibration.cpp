@@ -1,0 +1,306 @@
+#include "rviz_projector/calibration/camera_calibration.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <camera_calibration_parsers/parse_yml.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "rviz_projector/calibration/calibration_points_file.h"
+#include "rviz_projector/calibration/calibration_report.h"
+#include "rviz_projector/calibration/calibration_run.h"
+#include "rviz_projector/calibration/mount_file.h"
+#include "rviz_projector/calibration/number_format.h"
+#include "rviz_projector/calibration/pattern_capture.h"
+#include "rviz_projector/core/camera_floor.h"
+#include "rviz_projector/ros/ros_conversions.h"
+
+namespace rviz_projector
+{
+namespace
+{
+std::string percent(double fraction)
+{
+  return fixedDecimals(100.0 * fraction, 1) + " %";
+}
+
+RigidTransform toRigid(const geometry_msgs::Transform& t)
+{
+  return RigidTransform::fromQuaternion(t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w,
+                                        Vec3{t.translation.x, t.translation.y, t.translation.z});
+}
+
+RigidTransform compose(const RigidTransform& a_T_b, const RigidTransform& b_T_c)
+{
+  const std::array<double, 9>& r = a_T_b.rotation();
+  const std::array<double, 9>& s = b_T_c.rotation();
+  std::array<double, 9> m{};
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      m[3 * i + j] = r[3 * i] * s[j] + r[3 * i + 1] * s[3 + j] + r[3 * i + 2] * s[6 + j];
+    }
+  }
+  return RigidTransform::fromMatrix(m, a_T_b.apply(b_T_c.translation()));
+}
+
+/// `frame`'s pose in `target` (latest), or "" with the error in `error`.
+bool lookup(const tf2_ros::Buffer& tf, const std::string& target, const std::string& frame, double timeout,
+            RigidTransform& out, std::string& error)
+{
+  try
+  {
+    out = toRigid(tf.lookupTransform(target, frame, ros::Time(0), ros::Duration(timeout)).transform);
+    return true;
+  }
+  catch (const tf2::TransformException& e)
+  {
+    error = e.what();
+    return false;
+  }
+}
+
+/// The calibration file's CameraInfo with the fitted distortion: plumb_bob k1 k2 0 0 0, P = [K | 0]
+/// (with a distortion the projector draws through K).
+sensor_msgs::CameraInfo withDistortion(sensor_msgs::CameraInfo info, const LensDistortion& distortion)
+{
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  const std::vector<double>& d = distortion.coefficients();
+  for (std::size_t i = 0; i < d.size() && i < 5; ++i)
+  {
+    info.D[i] = d[i];
+  }
+  info.P = {info.K[0], info.K[1], info.K[2], 0.0, info.K[3], info.K[4], info.K[5], 0.0, info.K[6], info.K[7], info.K[8], 0.0};
+  return info;
+}
+
+std::string report(const CameraCalibrationResult& r, const ProjectorMount& mount, const std::string& parent,
+                   const ProjectorMount* prior, double seconds, std::size_t camera_pixels)
+{
+  const DenseMountSolution& s = r.solution;
+  std::ostringstream text;
+  text << "Mount (projector.launch): " << launchArguments(parent, mount) << "\n";
+  if (prior != nullptr)
+  {
+    const double moved = std::sqrt((mount.x - prior->x) * (mount.x - prior->x) +
+                                   (mount.y - prior->y) * (mount.y - prior->y) +
+                                   (mount.z - prior->z) * (mount.z - prior->z));
+    text << "  moved from the current mount by " << fixedDecimals(moved * 1000.0, 1) << " mm; roll "
+         << fixedDecimals((mount.roll - prior->roll) * 180.0 / M_PI, 3) << " deg, pitch "
+         << fixedDecimals((mount.pitch - prior->pitch) * 180.0 / M_PI, 3) << " deg, yaw "
+         << fixedDecimals((mount.yaw - prior->yaw) * 180.0 / M_PI, 3) << " deg\n";
+  }
+  const std::vector<double>& d = s.distortion.coefficients();
+  text << "Distortion: " << (d.empty() ? std::string("none") : "k1 " + fixedDecimals(d[0], 5) + " +- " +
+                                                                   fixedDecimals(s.k_stddev[0], 5) + ", k2 " +
+                                                                   fixedDecimals(d.size() > 1 ? d[1] : 0.0, 5) +
+                                                                   " +- " + fixedDecimals(s.k_stddev[1], 5))
+       << "\n";
+  text << "Coverage: " << percent(r.coverage) << " of the projector image, "
+       << percent(double(r.decoded.lit) / double(std::max<std::size_t>(camera_pixels, 1)))
+       << " of the camera image lit; " << r.decoded.decoded << " camera pixels decoded (" << r.decoded.full
+       << " to the last bit), " << r.correspondences << " correspondences\n";
+  text << "Residuals: " << s.inliers << " inliers, " << s.outliers << " outliers; RMS " << fixedDecimals(s.rms_px, 3)
+       << " px; on the floor median " << fixedDecimals(s.median_mm, 2) << " mm, max " << fixedDecimals(s.max_mm, 2)
+       << " mm\n";
+  text << "Expected floor error (1 sigma):";
+  for (const ExpectedError& e : s.expected)
+  {
+    text << " " << e.where << " " << fixedDecimals(e.mm, 2) << " mm;";
+  }
+  text << "\n";
+  for (const std::string& w : s.warnings)
+  {
+    text << "Warning: " << w << "\n";
+  }
+  text << "Took " << fixedDecimals(seconds, 1) << " s\n";
+  return text.str();
+}
+}  // namespace
+
+CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, const std::vector<cv::Mat>& captures)
+{
+  CameraCalibrationResult result;
+  const CameraCalibrationLimits& limits = input.limits;
+  const int w = static_cast<int>(input.lens.width());
+  const int h = static_cast<int>(input.lens.height());
+  result.decoded = decodeGrayCode(w, h, captures);
+  const GrayDecodeResult& decoded = result.decoded;
+  if (!decoded.error.empty())
+  {
+    result.error = "the captured frames cannot be decoded: " + decoded.error;
+    return result;
+  }
+  const double camera_pixels = captures.empty() ? 1.0 : double(captures[0].total());
+  if (decoded.lit < limits.min_lit * camera_pixels)
+  {
+    result.error = "the camera sees too little of the projection: " + percent(decoded.lit / camera_pixels) +
+                   " of its pixels are lit by the white frame (at least " + percent(limits.min_lit) +
+                   " needed): point the camera at the lit floor, or check --image";
+    return result;
+  }
+  if (decoded.saturated > limits.max_saturated * decoded.lit)
+  {
+    result.error = "the patterns saturate the camera: " + percent(double(decoded.saturated) / decoded.lit) +
+                   " of the lit pixels are white in the white frame (at most " + percent(limits.max_saturated) +
+                   "): lower the camera's exposure or gain";
+    return result;
+  }
+  if (decoded.decoded < limits.min_decoded * decoded.lit)
+  {
+    result.error = "the patterns cannot be decoded: only " + percent(double(decoded.decoded) / decoded.lit) +
+                   " of the lit camera pixels gave a projector pixel (at least " + percent(limits.min_decoded) +
+                   "): too little contrast (ambient light, focus), or frames captured before their pattern was "
+                   "on the floor (raise --settle)";
+    return result;
+  }
+  const Correspondences found = floorCorrespondences(decoded, input.camera, input.floor_T_camera, w, h);
+  if (!found.error.empty())
+  {
+    result.error = found.error;
+    return result;
+  }
+  result.correspondences = found.points.size();
+  result.coverage = found.coverage;
+  if (found.coverage < limits.min_coverage)
+  {
+    result.error = "the camera sees only " + percent(found.coverage) + " of the projector's image on the floor (at least " +
+                   percent(limits.min_coverage) + " needed for a sound solve): move the camera or the robot";
+    return result;
+  }
+  DenseSolveOptions options;
+  options.fit_distortion = input.fit_distortion;
+  result.solution = solveMountDense(input.lens, found.points, input.prior, options);
+  if (!result.solution.ok)
+  {
+    result.error = "no solution: " + result.solution.error;
+  }
+  return result;
+}
+
+int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std::ostream& err)
+{
+  const auto start = std::chrono::steady_clock::now();
+  CalibrationInput file;
+  if (const int status = loadCalibrationInput(options, file, err); status != kExitOk)
+  {
+    return status;
+  }
+  CameraCalibrationInput input;
+  const LensCalibration projector = toLensCalibration(file.file.info);
+  if (const LensCheck check = PinholeModel::rawFromCalibration(projector, input.lens); !check.ok())
+  {
+    return reportError(err, file.file.path + ": K is unusable: " + check.error);
+  }
+  input.fit_distortion = !options.keep_distortion;
+  const std::string floor_frame = options.floor_frame.empty() ? options.frame : options.floor_frame;
+
+  tf2_ros::Buffer tf;
+  tf2_ros::TransformListener listener(tf);
+  PatternCaptureOptions capture_options;
+  capture_options.image_topic = options.image;
+  capture_options.pattern_topic = options.pattern_topic;
+  capture_options.settle = options.settle;
+  PatternCapture capture(capture_options);
+  err << "calibrate_projector: waiting for the projector (" << options.pattern_topic << ") and the camera ("
+      << options.image << ")" << std::endl;
+  if (const std::string problem = capture.waitUntilReady(10.0); !problem.empty())
+  {
+    return reportError(err, problem + " (nothing written)");
+  }
+  input.camera = toLensCalibration(capture.cameraInfo());
+  std::string tf_error;
+  if (!lookup(tf, floor_frame, capture.cameraFrame(), 3.0, input.floor_T_camera, tf_error))
+  {
+    return reportError(err, "no tf from the camera's frame '" + capture.cameraFrame() + "' to the floor frame '" +
+                                floor_frame + "': " + tf_error + " (nothing written)");
+  }
+  RigidTransform base_T_floor;
+  if (floor_frame != options.frame && !lookup(tf, options.frame, floor_frame, 3.0, base_T_floor, tf_error))
+  {
+    return reportError(err, "no tf from the floor frame '" + floor_frame + "' to '" + options.frame + "': " + tf_error +
+                                " (nothing written)");
+  }
+  ProjectorMount prior;       // in the floor frame, for the solver
+  ProjectorMount prior_base;  // in --frame, for the report
+  RigidTransform floor_T_projector;
+  if (lookup(tf, floor_frame, options.projector_frame, 1.0, floor_T_projector, tf_error))
+  {
+    prior = mountOfOpticalPose(floor_T_projector);
+    prior_base = mountOfOpticalPose(compose(base_T_floor, floor_T_projector));
+    input.prior = &prior;
+  }
+  else
+  {
+    err << "calibrate_projector: no tf of the projector's frame '" << options.projector_frame
+        << "': solving without the current mount as a start" << std::endl;
+  }
+
+  const std::vector<PatternFrame> frames = grayCodeFrames(int(input.lens.width()), int(input.lens.height()));
+  std::vector<cv::Mat> captures(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i)
+  {
+    err << "calibrate_projector: [" << i + 1 << "/" << frames.size() << "] " << frames[i].name << std::endl;
+    const std::string problem = capture.capture(frames[i].image, frames[i].name, captures[i]);
+    if (!problem.empty())
+    {
+      return reportError(err, problem + " (nothing written)");
+    }
+  }
+  capture.end();
+  err << "calibrate_projector: decoding and solving" << std::endl;
+  const CameraCalibrationResult result = solveFromCaptures(input, captures);
+  if (!result.error.empty())
+  {
+    return reportError(err, result.error + " (nothing written)");
+  }
+  const RigidTransform base_T_optical = compose(base_T_floor, result.solution.parent_T_optical);
+  MountSolution mount;
+  mount.ok = true;
+  mount.mount = mountOfOpticalPose(base_T_optical);
+  mount.parent_T_optical = base_T_optical;
+  mount.rms_px = result.solution.rms_px;
+  mount.rms_mm = result.solution.rms_mm;
+
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!options.output.empty())
+  {
+    files.emplace_back(options.output,
+                       mountFileYaml(options.frame, mount,
+                                     "# Projector mount solved by calibrate_projector --camera (" + options.image +
+                                         ", " + options.camera_info + ").\n"));
+  }
+  if (!options.output_calibration.empty())
+  {
+    std::ostringstream yaml;
+    if (!camera_calibration_parsers::writeCalibrationYml(yaml, file.file.camera_name,
+                                                         withDistortion(file.file.info, result.solution.distortion)))
+    {
+      return reportError(err, options.output_calibration + ": the calibration could not be formatted (nothing written)");
+    }
+    files.emplace_back(options.output_calibration, yaml.str());
+  }
+  if (const std::string error = writeTextFiles(files); !error.empty())
+  {
+    return reportError(err, error + " (no file written)");
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out << report(result, mount.mount, options.frame, input.prior != nullptr ? &prior_base : nullptr, seconds,
+                captures.empty() ? 0 : captures[0].total());
+  if (!options.output.empty())
+  {
+    out << "Mount written to " << options.output << ": projector.launch mount_file:=" << options.output << "\n";
+  }
+  if (!options.output_calibration.empty())
+  {
+    out << "Calibration written to " << options.output_calibration << " (D = k1 k2 0 0 0, P = K): calibration_file:="
+        << options.output_calibration << "\n";
+  }
+  return kExitOk;
+}
+}  // namespace rviz_projector
