@@ -28,11 +28,17 @@ constexpr double kMaxCentreStddev = 0.04;
 constexpr double kPlanarRms = 0.005;
 const cv::TermCriteria kRefine(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, DBL_EPSILON);
 
+/// With fit_distortion: an inlier within this fraction of the image's width and height of each
+/// image corner is needed.
+constexpr double kCornerReach = 0.25;
+constexpr std::size_t kMinDistortionPoints = 8;
+
 struct Fit
 {
   bool ok = false;
   Pose pose;
   PinholeModel lens;
+  LensDistortion distortion;  ///< fitted k1, k2 (fit_distortion), else none
 };
 
 /// Depth of a world point in the optical frame.
@@ -119,7 +125,7 @@ Fit fitFixedLens(const PinholeModel& lens, const std::vector<FloorPoint>& points
     const double error = squaredReprojection(lens, pose, object, image);
     if (std::isfinite(error) && error < best_error && physicallyValid(pose, points, which))
     {
-      best = {true, pose, lens};
+      best = {true, pose, lens, LensDistortion()};
       best_error = error;
     }
   }
@@ -178,37 +184,72 @@ Fit fitWithLens(const PinholeModel& lens, const std::vector<FloorPoint>& points,
   {
     return {};
   }
-  return {true, pose, fitted};
+  return {true, pose, fitted, LensDistortion()};
+}
+
+/// The pinhole pose, then pose, k1, k2 refined together from k1 = k2 = 0.
+Fit fitWithDistortion(const PinholeModel& lens, const std::vector<FloorPoint>& points, const std::vector<int>& which)
+{
+  Fit start = fitFixedLens(lens, points, which);
+  if (!start.ok)
+  {
+    return {};
+  }
+  std::vector<double> coefficients(5, 0.0);
+  if (!refinePose(lens, objectPoints(points, which), imagePoints(points, which), true, start.pose, coefficients) ||
+      !physicallyValid(start.pose, points, which))
+  {
+    return {};
+  }
+  start.distortion = radialDistortion(coefficients[0], coefficients[1]);
+  return start;
 }
 
 Fit fit(const PinholeModel& lens, const std::vector<FloorPoint>& points, const std::vector<int>& which,
-        bool with_lens)
+        const MountSolverOptions& options)
 {
-  return with_lens ? fitWithLens(lens, points, which) : fitFixedLens(lens, points, which);
+  if (options.fit_intrinsics)
+  {
+    return fitWithLens(lens, points, which);
+  }
+  return options.fit_distortion ? fitWithDistortion(lens, points, which) : fitFixedLens(lens, points, which);
+}
+
+/// Which image corners have no inlier within kCornerReach of them ("" when all do).
+std::string uncoveredCorners(const PinholeModel& lens, const std::vector<FloorPoint>& points,
+                             const std::vector<int>& inliers)
+{
+  const char* const names[4] = {"top left", "top right", "bottom left", "bottom right"};
+  std::string missing;
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    const double cu = corner % 2 == 0 ? 0.0 : lens.width(), cv = corner < 2 ? 0.0 : lens.height();
+    const bool covered = std::any_of(inliers.begin(), inliers.end(), [&](int i) {
+      const Vec2& p = points[static_cast<std::size_t>(i)].pixel;
+      return std::fabs(p.x - cu) <= kCornerReach * lens.width() && std::fabs(p.y - cv) <= kCornerReach * lens.height();
+    });
+    if (!covered)
+    {
+      missing += (missing.empty() ? "" : ", ") + std::string(names[corner]);
+    }
+  }
+  return missing;
 }
 
 /// Distance on the point's plane between the measured point and where its crosshair's ray lands.
 double residualMm(const Fit& f, const FloorPoint& p)
 {
   Vec3 hit;
-  if (!pixelOnPlane(f.lens, parentTOptical(f.pose), p.pixel, p.world.z, hit))
+  if (!pixelOnPlane(f.lens, f.distortion, parentTOptical(f.pose), p.pixel, p.world.z, hit))
   {
     return HUGE_VAL;
   }
   return 1000.0 * std::hypot(hit.x - p.world.x, hit.y - p.world.y);
 }
 
-double residualPx(const Fit& f, const FloorPoint& p)
+double residualPx(const Fit& f, const std::vector<FloorPoint>& points, int i)
 {
-  cv::Matx33d r;
-  cv::Rodrigues(f.pose.rvec, r);
-  const cv::Vec3d q = r * cv::Vec3d(p.world.x, p.world.y, p.world.z) + f.pose.tvec;
-  Vec2 pixel;
-  if (!f.lens.project({q[0], q[1], q[2]}, pixel))
-  {
-    return HUGE_VAL;
-  }
-  return distance(pixel, p.pixel);
+  return reprojectionErrors(f.lens, coefficientsOf(f.distortion), f.pose, points, {i})[0];
 }
 
 MountSolution failure(const std::string& error)
@@ -266,7 +307,17 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
     inliers[i] = static_cast<int>(i);
   }
   const bool with_lens = options.fit_intrinsics;
-  const std::size_t min_points = with_lens ? 6 : 4;
+  if (with_lens && options.fit_distortion)
+  {
+    return failure("fitting intrinsics and distortion together is not supported: fit the intrinsics first (points "
+                   "off the floor), then k1, k2 with the fitted lens");
+  }
+  if (options.fit_distortion && points.size() < kMinDistortionPoints)
+  {
+    return failure("fitting k1, k2 needs at least " + std::to_string(kMinDistortionPoints) +
+                   " points spread out to the image corners, got " + std::to_string(points.size()));
+  }
+  const std::size_t min_points = with_lens ? 6 : options.fit_distortion ? kMinDistortionPoints : 4;
   if (with_lens)
   {
     // RMS distance of the points from their best-fitting plane (any tilt): the smallest singular
@@ -300,7 +351,7 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   // all (the point above the projector or behind it), so a failed fit of all points is also
   // answered by leaving out each point in turn.
   const char* const no_pose = with_lens ? kNoLensFit : kNoValidPose;
-  Fit current = fit(lens, points, inliers, with_lens);
+  Fit current = fit(lens, points, inliers, options);
   const double limit_mm = 1000.0 * options.outlier_distance;
   std::vector<int> outliers;
   std::vector<std::string> robust_warnings;
@@ -330,7 +381,7 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
       {
         break;
       }
-      const Fit without = fit(lens, points, others, with_lens);
+      const Fit without = fit(lens, points, others, options);
       if (!without.ok)
       {
         continue;
@@ -381,7 +432,7 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
       }
     }
     inliers = best_agree;
-    current = fit(lens, points, inliers, with_lens);
+    current = fit(lens, points, inliers, options);
     if (!current.ok)
     {
       return failure(no_pose);
@@ -422,7 +473,7 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   {
     PointResidual r;
     r.id = points[i].id;
-    r.px = residualPx(current, points[i]);
+    r.px = residualPx(current, points, static_cast<int>(i));
     r.mm = residualMm(current, points[i]);
     r.outlier = std::find(outliers.begin(), outliers.end(), static_cast<int>(i)) != outliers.end();
     if (!r.outlier && (!std::isfinite(r.mm) || !std::isfinite(r.px)))
@@ -444,12 +495,26 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
   }
   s.rms_px = std::sqrt(sum_px / static_cast<double>(inliers.size()));
   s.rms_mm = std::sqrt(sum_mm / static_cast<double>(inliers.size()));
-  if (!poseCovariance(current.lens, current.pose, points, inliers, options.tape_error, with_lens, s))
+  const Extra extra = with_lens ? Extra::Intrinsics : options.fit_distortion ? Extra::Distortion : Extra::None;
+  cv::Mat covariance;
+  if (!poseCovariance(current.lens, current.distortion, current.pose, points, inliers, options.tape_error, extra,
+                      covariance))
   {
     return failure("the points do not determine the pose (singular Jacobian): spread them over the image");
   }
+  for (int r = 0; r < 6; ++r)
+  {
+    for (int c = 0; c < 6; ++c)
+    {
+      s.covariance[static_cast<std::size_t>(6 * r + c)] = covariance.at<double>(r, c);
+    }
+  }
   if (with_lens)
   {
+    for (int k = 0; k < 4; ++k)
+    {
+      s.lens_stddev[static_cast<std::size_t>(k)] = std::sqrt(std::max(0.0, covariance.at<double>(6 + k, 6 + k)));
+    }
     const double sfx = s.lens_stddev[0] / s.lens.fx(), sfy = s.lens_stddev[1] / s.lens.fy();
     const double scx = s.lens_stddev[2] / s.lens.width(), scy = s.lens_stddev[3] / s.lens.height();
     if (!(std::max(sfx, sfy) <= kMaxFocalStddev && std::max(scx, scy) <= kMaxCentreStddev))
@@ -460,9 +525,39 @@ MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>
                      "(z given), spread over the image");
     }
   }
+  if (options.fit_distortion)
+  {
+    if (const std::string missing = uncoveredCorners(lens, points, inliers); !missing.empty())
+    {
+      return failure("fitting k1, k2 needs points near every image corner (within " + num(100 * kCornerReach) +
+                     "% of the image's width and height of it); none near the " + missing +
+                     " corner: use a pattern reaching the corners, e.g. --rows 5 --cols 5");
+    }
+    s.distortion = current.distortion;
+    s.distortion_stddev = {std::sqrt(std::max(0.0, covariance.at<double>(6, 6))),
+                           std::sqrt(std::max(0.0, covariance.at<double>(7, 7)))};
+    const cv::Matx22d k_covariance = covariance(cv::Rect(6, 6, 2, 2));
+    const double corner_px = distortionCornerStddevPx(lens, k_covariance);
+    if (!(corner_px <= kMaxFloorDistortionStddevPx))
+    {
+      return failure("fitting k1, k2: " + std::to_string(inliers.size()) + " points measured to " +
+                     num(1000.0 * options.tape_error) + " mm cannot pin the distortion (k1 " +
+                     num(s.distortion_stddev[0]) + " and k2 " + num(s.distortion_stddev[1]) +
+                     " 1-sigma: " + num(corner_px) + " px at the image corner, more than " +
+                     num(kMaxFloorDistortionStddevPx) + "): measure more crosshairs (e.g. --rows 5 --cols 5) "
+                     "more accurately, or leave out --fit-distortion");
+    }
+    const LensDistortion::Fold fold = current.distortion.foldCheck(lens.cornerRadius());
+    if (fold.folds)
+    {
+      return failure("fitting k1, k2: the fitted " + LensDistortion::foldError(fold, lens.cornerRadius()));
+    }
+  }
   s.warnings = geometryWarnings(s.lens, points, inliers);
   s.warnings.insert(s.warnings.end(), robust_warnings.begin(), robust_warnings.end());
-  expectedErrors(s.lens, current.pose, points, inliers, s);
+  expectedErrors(s.lens, current.distortion, current.pose,
+                 options.fit_distortion ? covariance(cv::Rect(0, 0, 8, 8)) : covariance(cv::Rect(0, 0, 6, 6)), points,
+                 inliers, "crosshair", s.expected, s.warnings);
   s.ok = true;
   return s;
 }

@@ -24,8 +24,9 @@ constexpr double kStep = 1e-6;
 constexpr double kAhead = 2.0;
 
 /// d(u, v) / d(x, y) at each inlier: how a measurement error on its plane moves its pixel.
-std::vector<cv::Matx22d> pixelsPerMetre(const PinholeModel& lens, const Pose& pose,
-                                        const std::vector<FloorPoint>& points, const std::vector<int>& inliers)
+std::vector<cv::Matx22d> pixelsPerMetre(const PinholeModel& lens, const std::vector<double>& coefficients,
+                                        const Pose& pose, const std::vector<FloorPoint>& points,
+                                        const std::vector<int>& inliers)
 {
   const double d = 1e-3;
   std::vector<cv::Point3d> probes;
@@ -38,7 +39,7 @@ std::vector<cv::Matx22d> pixelsPerMetre(const PinholeModel& lens, const Pose& po
     probes.emplace_back(w.x, w.y + d, w.z);
   }
   std::vector<cv::Point2d> px;
-  cv::projectPoints(probes, pose.rvec, pose.tvec, cameraMatrix(lens), cv::noArray(), px);
+  cv::projectPoints(probes, pose.rvec, pose.tvec, cameraMatrix(lens), coefficients, px);
   std::vector<cv::Matx22d> out;
   for (std::size_t k = 0; k + 3 < px.size(); k += 4)
   {
@@ -49,69 +50,108 @@ std::vector<cv::Matx22d> pixelsPerMetre(const PinholeModel& lens, const Pose& po
   return out;
 }
 
-Pose perturbed(const Pose& pose, int k, double delta)
+/// The model with parameter k (rvec 0..2, tvec 3..5, k1 6, k2 7) moved by delta.
+void perturbed(const Pose& pose, const std::vector<double>& coefficients, int k, double delta, Pose& p,
+               std::vector<double>& c)
 {
-  Pose p = pose;
-  (k < 3 ? p.rvec[k] : p.tvec[k - 3]) += delta;
-  return p;
+  p = pose;
+  c = coefficients;
+  if (k < 6)
+  {
+    (k < 3 ? p.rvec[k] : p.tvec[k - 3]) += delta;
+  }
+  else
+  {
+    c[static_cast<std::size_t>(k - 6)] += delta;
+  }
 }
 
-/// 1-sigma radial error (mm) of the point where `pixel`'s ray meets z = plane_z; NaN when it does not.
-double floorErrorMm(const PinholeModel& lens, const Pose& pose, const cv::Matx66d& covariance, const Vec2& pixel,
-                    double plane_z)
+LensDistortion distortionOf(const LensDistortion& model, const std::vector<double>& coefficients)
 {
-  cv::Matx<double, 2, 6> g;
-  for (int k = 0; k < 6; ++k)
+  return LensDistortion(model.none() ? LensDistortion::Model::PlumbBob : model.model(), coefficients);
+}
+
+/// 1-sigma radial error (mm) of the point where `pixel`'s ray meets z = plane_z; NaN when it does
+/// not. `covariance`: 6 x 6 (pose) or 8 x 8 (pose, k1, k2).
+double floorErrorMm(const PinholeModel& lens, const LensDistortion& distortion, const Pose& pose,
+                    const cv::Mat& covariance, const Vec2& pixel, double plane_z)
+{
+  const int n = covariance.rows;
+  const std::vector<double> coefficients = coefficientsOf(distortion);
+  cv::Mat g(2, n, CV_64F);
+  for (int k = 0; k < n; ++k)
   {
     Vec3 plus, minus;
-    if (!pixelOnPlane(lens, parentTOptical(perturbed(pose, k, kStep)), pixel, plane_z, plus) ||
-        !pixelOnPlane(lens, parentTOptical(perturbed(pose, k, -kStep)), pixel, plane_z, minus))
+    Pose p;
+    std::vector<double> c;
+    perturbed(pose, coefficients, k, kStep, p, c);
+    const bool ok_plus = pixelOnPlane(lens, distortionOf(distortion, c), parentTOptical(p), pixel, plane_z, plus);
+    perturbed(pose, coefficients, k, -kStep, p, c);
+    if (!ok_plus || !pixelOnPlane(lens, distortionOf(distortion, c), parentTOptical(p), pixel, plane_z, minus))
     {
       return std::nan("");
     }
-    g(0, k) = (plus.x - minus.x) / (2 * kStep);
-    g(1, k) = (plus.y - minus.y) / (2 * kStep);
+    g.at<double>(0, k) = (plus.x - minus.x) / (2 * kStep);
+    g.at<double>(1, k) = (plus.y - minus.y) / (2 * kStep);
   }
-  const cv::Matx22d c = g * covariance * g.t();
-  return 1000.0 * std::sqrt(std::max(0.0, c(0, 0) + c(1, 1)));
+  const cv::Mat c = g * covariance * g.t();
+  return 1000.0 * std::sqrt(std::max(0.0, c.at<double>(0, 0) + c.at<double>(1, 1)));
 }
 }  // namespace
 
-bool poseCovariance(const PinholeModel& lens, const Pose& pose, const std::vector<FloorPoint>& points,
-                    const std::vector<int>& inliers, double tape_error, bool with_intrinsics, MountSolution& out)
+bool poseCovariance(const PinholeModel& lens, const LensDistortion& distortion, const Pose& pose,
+                    const std::vector<FloorPoint>& points, const std::vector<int>& inliers, double tape_error,
+                    Extra extra, cv::Mat& covariance)
 {
   const std::vector<cv::Point3d> object = objectPoints(points, inliers);
+  const std::vector<double> coefficients = coefficientsOf(distortion);
   std::vector<cv::Point2d> projected;
   cv::Mat jacobian;
-  const cv::Mat no_distortion = cv::Mat::zeros(4, 1, CV_64F);
-  cv::projectPoints(object, pose.rvec, pose.tvec, cameraMatrix(lens), no_distortion, projected, jacobian);
-  const int params = with_intrinsics ? 10 : 6;
+  cv::projectPoints(object, pose.rvec, pose.tvec, cameraMatrix(lens), coefficients, projected, jacobian);
+  // Jacobian columns: rvec 0..2, tvec 3..5, fx fy 6..7, cx cy 8..9, the distortion from 10.
+  cv::Mat j;
+  if (extra == Extra::Distortion)
+  {
+    cv::hconcat(jacobian.colRange(0, 6), jacobian.colRange(10, 12), j);
+  }
+  else
+  {
+    j = jacobian.colRange(0, extra == Extra::Intrinsics ? 10 : 6);
+  }
+  const int params = j.cols;
   const int n = static_cast<int>(inliers.size());
   // The measurement error (metres, per coordinate on the plane): estimated from the residuals on
   // the plane, never below tape_error.
-  const RigidTransform transform = parentTOptical(pose);
-  double sum_sq = 0.0;
+  std::vector<Vec2> pixels;
+  std::vector<double> planes;
   for (int i : inliers)
   {
-    const FloorPoint& p = points[static_cast<std::size_t>(i)];
-    Vec3 hit;
-    if (!pixelOnPlane(lens, transform, p.pixel, p.world.z, hit))
+    pixels.push_back(points[static_cast<std::size_t>(i)].pixel);
+    planes.push_back(points[static_cast<std::size_t>(i)].world.z);
+  }
+  std::vector<Vec3> hits;
+  std::vector<bool> hit;
+  pixelsOnPlanes(lens, distortion, parentTOptical(pose), pixels, planes, hits, hit);
+  double sum_sq = 0.0;
+  for (std::size_t k = 0; k < inliers.size(); ++k)
+  {
+    const Vec3& w = points[static_cast<std::size_t>(inliers[k])].world;
+    if (!hit[k])
     {
       return false;
     }
-    sum_sq += (hit.x - p.world.x) * (hit.x - p.world.x) + (hit.y - p.world.y) * (hit.y - p.world.y);
+    sum_sq += (hits[k].x - w.x) * (hits[k].x - w.x) + (hits[k].y - w.y) * (hits[k].y - w.y);
   }
   const double posterior = 2 * n > params ? sum_sq / (2 * n - params) : 0.0;
   const double sigma2 = std::max(posterior, tape_error * tape_error);
   // The estimator minimises pixel residuals, the noise is on the plane: sandwich covariance
   // H^-1 (J^T S J) H^-1, H = J^T J, S the pixel covariance sigma^2 A A^T of each point.
-  const cv::Mat j = jacobian.colRange(0, params);
   cv::Mat h_inverse;
   if (cv::invert(j.t() * j, h_inverse, cv::DECOMP_CHOLESKY) == 0.0)
   {
     return false;
   }
-  const std::vector<cv::Matx22d> a = pixelsPerMetre(lens, pose, points, inliers);
+  const std::vector<cv::Matx22d> a = pixelsPerMetre(lens, coefficients, pose, points, inliers);
   cv::Mat middle = cv::Mat::zeros(params, params, CV_64F);
   for (int i = 0; i < n; ++i)
   {
@@ -119,29 +159,15 @@ bool poseCovariance(const PinholeModel& lens, const Pose& pose, const std::vecto
     const cv::Mat ji = j.rowRange(2 * i, 2 * i + 2);
     middle += ji.t() * cv::Mat(s) * ji;
   }
-  const cv::Mat covariance = h_inverse * middle * h_inverse;
-  for (int r = 0; r < 6; ++r)
-  {
-    for (int c = 0; c < 6; ++c)
-    {
-      out.covariance[static_cast<std::size_t>(6 * r + c)] = covariance.at<double>(r, c);
-    }
-  }
-  out.lens_stddev = {};
-  if (with_intrinsics)
-  {
-    for (int k = 0; k < 4; ++k)
-    {
-      out.lens_stddev[static_cast<std::size_t>(k)] = std::sqrt(std::max(0.0, covariance.at<double>(6 + k, 6 + k)));
-    }
-  }
+  covariance = h_inverse * middle * h_inverse;
   return true;
 }
 
-void expectedErrors(const PinholeModel& lens, const Pose& pose, const std::vector<FloorPoint>& points,
-                    const std::vector<int>& inliers, MountSolution& out)
+void expectedErrors(const PinholeModel& lens, const LensDistortion& distortion, const Pose& pose,
+                    const cv::Mat& covariance, const std::vector<FloorPoint>& points,
+                    const std::vector<int>& inliers, const std::string& what, std::vector<ExpectedError>& expected,
+                    std::vector<std::string>& warnings)
 {
-  const cv::Matx66d covariance(out.covariance.data());
   const RigidTransform transform = parentTOptical(pose);
   // The extreme crosshairs: smallest / largest u + v and u - v.
   struct Corner
@@ -171,15 +197,15 @@ void expectedErrors(const PinholeModel& lens, const Pose& pose, const std::vecto
     used.push_back(best);
     const FloorPoint& p = points[static_cast<std::size_t>(best)];
     ExpectedError e;
-    e.where = "crosshair " + std::to_string(p.id) + " (" + corner.name + ")";
-    if (!pixelOnPlane(lens, transform, p.pixel, p.world.z, e.world))
+    e.where = what + " " + std::to_string(p.id) + " (" + corner.name + ")";
+    if (!pixelOnPlane(lens, distortion, transform, p.pixel, p.world.z, e.world))
     {
       continue;
     }
-    e.mm = floorErrorMm(lens, pose, covariance, p.pixel, p.world.z);
+    e.mm = floorErrorMm(lens, distortion, pose, covariance, p.pixel, p.world.z);
     if (std::isfinite(e.mm))
     {
-      out.expected.push_back(e);
+      expected.push_back(e);
     }
   }
 
@@ -187,24 +213,24 @@ void expectedErrors(const PinholeModel& lens, const Pose& pose, const std::vecto
   const Vec3 ahead{mount.x + kAhead * std::cos(mount.yaw), mount.y + kAhead * std::sin(mount.yaw), 0.0};
   std::vector<cv::Point2d> px;
   cv::projectPoints(std::vector<cv::Point3d>{{ahead.x, ahead.y, ahead.z}}, pose.rvec, pose.tvec, cameraMatrix(lens),
-                    cv::noArray(), px);
+                    coefficientsOf(distortion), px);
   cv::Matx33d r;
   cv::Rodrigues(pose.rvec, r);
   const double depth = (r * cv::Vec3d(ahead.x, ahead.y, ahead.z) + pose.tvec)[2];
   const Vec2 pixel{px[0].x, px[0].y};
   const bool in_image = depth > 0.0 && pixel.x >= -0.5 && pixel.y >= -0.5 && pixel.x <= lens.width() - 0.5 &&
                         pixel.y <= lens.height() - 0.5;
-  const double mm = in_image ? floorErrorMm(lens, pose, covariance, pixel, 0.0) : std::nan("");
+  const double mm = in_image ? floorErrorMm(lens, distortion, pose, covariance, pixel, 0.0) : std::nan("");
   if (std::isfinite(mm))
   {
-    out.expected.push_back({"2 m ahead", ahead, mm});
+    expected.push_back({"2 m ahead", ahead, mm});
   }
   else
   {
     std::ostringstream s;
     s << "the floor 2 m ahead of the mount (" << ahead.x << ", " << ahead.y
       << ") is not in the projector's image: no expected error reported there";
-    out.warnings.push_back(s.str());
+    warnings.push_back(s.str());
   }
 }
 }  // namespace mount_solver_detail

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/projector_mount.h"
 #include "rviz_projector/core/vec2.h"
@@ -43,6 +44,9 @@ struct MountSolverOptions
   double outlier_distance = 0.03;
   /// Also fit fx, fy, cx, cy (needs points off the floor plane).
   bool fit_intrinsics = false;
+  /// Also fit the radial distortion k1, k2 (plumb_bob, p1 = p2 = k3 = 0; see solveMount for what
+  /// it needs). Not together with fit_intrinsics.
+  bool fit_distortion = false;
 
   /// Options for points measured to `tape_error` (metres, 1 sigma): a point 10 tape errors, and at
   /// least 3 cm, from the solution is an outlier (3 mm -> 3 cm, 1 cm -> 10 cm).
@@ -70,6 +74,9 @@ struct MountSolution
   ProjectorMount mount;
   RigidTransform parent_T_optical;
   PinholeModel lens;                  ///< the lens used (fitted with fit_intrinsics)
+  /// With fit_distortion: the fitted plumb_bob (k1, k2, 0, 0, 0); otherwise none (the solver
+  /// treats the lens as an ideal pinhole).
+  LensDistortion distortion;
   std::vector<PointResidual> residuals;  ///< one per input point, in input order
   std::vector<int> outliers;          ///< ids rejected
   double rms_px = 0.0;                ///< over the inliers
@@ -90,6 +97,8 @@ struct MountSolution
   std::vector<ExpectedError> expected;
   /// With fit_intrinsics: 1-sigma of the fitted fx, fy, cx, cy (pixels), same sigma as covariance.
   std::array<double, 4> lens_stddev{};
+  /// With fit_distortion: 1-sigma of the fitted k1, k2 (the (pose, k1, k2) covariance, 2N - 8).
+  std::array<double, 2> distortion_stddev{};
 };
 
 /// Problems of the input alone ("" when fine): fewer than 4 points, NaN/Inf, duplicate ids,
@@ -121,6 +130,15 @@ std::string solverLensProblem(const PinholeModel& lens);
  *    point outside the image, normal for projectors, is accepted) in every fit above; refused when
  *    the fitted lens is too uncertain (1-sigma focal length > 2% or principal point > 4% of the
  *    image size, from the covariance below with its 2N - 10 degrees of freedom).
+ *  - fit_distortion: every fit above also fits k1, k2 (Levenberg-Marquardt over pose, k1, k2 from
+ *    k1 = k2 = 0, Jacobian from cv::projectPoints). A floor cannot tell distortion from pose unless
+ *    the points reach out towards the image corners, so it needs 8+ points (8+ inliers after the
+ *    outlier search) and, near each of the image's 4 corners (within 25% of its width and height),
+ *    an inlier; and it is refused when the fit is too uncertain: the 1-sigma radial displacement of
+ *    the fitted k1, k2 at the image corner (g C g^T, g = f (r^3, r^5), r = lens.cornerRadius(), C
+ *    their covariance, sigma as above with 2N - 8) above kMaxFloorDistortionStddevPx. With a 3 mm
+ *    tape error 9 crosshairs (3x3) are refused this way; 25 (5x5) measured to 1 mm are enough.
+ *    Refused too when the fitted map folds before the image corner (LensDistortion::foldCheck).
  *  - Errors after solving: a point behind the projector, the projector below the points.
  *  - Warnings (solution still given): fewer than 6 inliers, nearly collinear (singular value ratio
  *    < 0.15), all pixels within a box under 40% of the image's width and height, a point off by more
@@ -129,8 +147,16 @@ std::string solverLensProblem(const PinholeModel& lens);
 MountSolution solveMount(const PinholeModel& lens, const std::vector<FloorPoint>& points,
                          const MountSolverOptions& options = MountSolverOptions());
 
+/// Largest 1-sigma radial displacement (projector pixels at the image corner) of k1, k2 fitted to
+/// floor points (solveMount with fit_distortion): about 2 mm on the floor 2 m away with a PA503W.
+constexpr double kMaxFloorDistortionStddevPx = 2.0;
+
 /// Where the ray through `pixel` of a projector at `parent_T_optical` meets the plane z = plane_z
 /// of the parent frame; false when it does not (parallel, or behind the lens).
 bool pixelOnPlane(const PinholeModel& lens, const RigidTransform& parent_T_optical, const Vec2& pixel,
                   double plane_z, Vec3& out);
+/// The same through a distorting lens: the pixel's ray is its undistorted direction
+/// (LensDistortion::undistort of its normalised coordinates).
+bool pixelOnPlane(const PinholeModel& lens, const LensDistortion& distortion, const RigidTransform& parent_T_optical,
+                  const Vec2& pixel, double plane_z, Vec3& out);
 }  // namespace rviz_projector
