@@ -19,7 +19,7 @@ rp_is_noetic_ubuntu() { [ -f /opt/ros/noetic/setup.bash ] || grep -q 'VERSION_CO
 
 rp_packages() {
   local common="build-essential cmake xvfb xauth x11-utils x11-xserver-utils x11-apps imagemagick
-    libgl1-mesa-dri mesa-utils xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
+    libgl1-mesa-dri mesa-utils python3-tf2-ros xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
     libbenchmark-dev qtbase5-dev libx11-dev libxext-dev libxdamage-dev libxfixes-dev
     libyaml-cpp-dev xdotool python3-xlib desktop-file-utils lld"
   if rp_is_noetic_ubuntu; then

@@ -360,6 +360,12 @@ DenseMountSolution solveMountDense(const PinholeModel& lens, const std::vector<F
   {
     return failure("an inlier's ray does not reach the points' plane in the solution: check the correspondences");
   }
+  double sum_mm = 0.0;
+  for (const double d : mm)
+  {
+    sum_mm += d * d;
+  }
+  s.rms_mm = std::sqrt(sum_mm / static_cast<double>(mm.size()));
 
   // Uncertainty: the weak-solve limits and the expected floor error.
   cv::Mat covariance;

@@ -66,6 +66,7 @@ struct DenseMountSolution
   double rms_px = 0.0;
   double median_mm = 0.0;
   double max_mm = 0.0;
+  double rms_mm = 0.0;  ///< RMS of those distances (the mount file's rms_mm)
   /// 1-sigma floor error at the extreme points (image corners) and 2 m ahead (as MountSolution's),
   /// from the (pose, k1, k2) covariance.
   std::vector<ExpectedError> expected;
