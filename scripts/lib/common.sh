@@ -19,7 +19,7 @@ rp_is_noetic_ubuntu() { [ -f /opt/ros/noetic/setup.bash ] || grep -q 'VERSION_CO
 
 rp_packages() {
   local common="build-essential cmake xvfb xauth x11-utils x11-xserver-utils x11-apps imagemagick
-    libgl1-mesa-dri mesa-utils python3-tf2-ros xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
+    libgl1-mesa-dri mesa-utils xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
     libbenchmark-dev qtbase5-dev libx11-dev libxext-dev libxdamage-dev libxfixes-dev
     libyaml-cpp-dev xdotool python3-xlib desktop-file-utils lld"
   if rp_is_noetic_ubuntu; then
@@ -36,7 +36,7 @@ rp_packages() {
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
       tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev python3-nav-msgs python3-sensor-msgs python3-rviz python3-visualization-msgs
       libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
-      libactionlib-msgs-dev libcv-bridge-dev libopencv-contrib-dev"
+      libactionlib-msgs-dev libcv-bridge-dev libopencv-contrib-dev python3-tf2-ros"
   fi
 }
 
