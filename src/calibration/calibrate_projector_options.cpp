@@ -50,7 +50,7 @@ std::string calibrateUsage()
          "      print the points template: every crosshair's id and pixel u, v, with x, y to fill in\n"
          "  calibrate_projector --camera-info CAL.yaml --points points.yaml [--output mount.yaml]\n"
          "                      [--rows R --cols C] [--tape-error MM]\n"
-         "                      [--fit-intrinsics] [--fit-distortion] [--output-calibration NEW_CAL.yaml]\n"
+         "                      [--fit-intrinsics | --fit-distortion] [--output-calibration NEW_CAL.yaml]\n"
          "      solve the projector's mount from the measured points and print it as projector.launch\n"
          "      arguments, with the residuals, outliers and the expected floor error\n"
          "  calibrate_projector --clicked-points --camera-info CAL.yaml --points-out points.yaml\n"
@@ -76,8 +76,9 @@ std::string calibrateUsage()
          "):\n"
          "                           sets the outlier threshold and the expected error\n"
          "  --fit-intrinsics         also fit fx, fy, cx, cy (needs points off the floor, z given)\n"
-         "  --fit-distortion         also fit k1, k2 (needs 8+ points spread to the image corners);\n"
-         "                           --output-calibration gets them\n"
+         "  --fit-distortion         also fit the lens distortion k1, k2 (plumb_bob; needs 8+ points\n"
+         "                           reaching the image corners, e.g. --rows 5 --cols 5, measured to 1 mm)\n"
+         "  --output-calibration NEW_CAL.yaml   write the calibration with the fitted numbers\n"
          "  --image TOPIC            --camera: the camera's sensor_msgs/Image (its CameraInfo on the sibling\n"
          "                           camera_info topic, D included; default /camera/image_raw)\n"
          "  --floor-frame F          --camera: the floor is z = 0 of F (default: --frame)\n"
@@ -213,7 +214,8 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   {
     return "--frame needs a frame name";
   }
-  if (pattern && (!out.points.empty() || !out.output.empty() || out.fit_intrinsics || !out.points_out.empty() ||
+  if (pattern && (!out.points.empty() || !out.output.empty() || out.fit_intrinsics || out.fit_distortion ||
+                  !out.points_out.empty() ||
                   out.tape_error != MountSolverOptions().tape_error))
   {
     return "--pattern only prints the template: it takes --camera-info, --rows, --cols and --frame";
@@ -234,6 +236,11 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   if (clicked && out.points_out.empty())
   {
     return "--clicked-points needs --points-out points.yaml (the file the clicked points are written to)";
+  }
+  if (out.fit_intrinsics && out.fit_distortion)
+  {
+    return "--fit-intrinsics and --fit-distortion exclude each other: fit the intrinsics first (points off the "
+           "floor), then the distortion with the fitted calibration";
   }
   if (camera && (!out.points.empty() || !out.points_out.empty() || out.fit_intrinsics || out.fit_distortion))
   {

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <sstream>
+#include <vector>
 
 #include <camera_calibration_parsers/parse_yml.h>
 
@@ -118,6 +119,7 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   }
   MountSolverOptions solver_options = MountSolverOptions::forTapeError(options.tape_error);
   solver_options.fit_intrinsics = options.fit_intrinsics;
+  solver_options.fit_distortion = options.fit_distortion;
   const MountSolution solution = solveMount(input.lens, points.points, solver_options);
   if (!solution.ok)
   {
@@ -129,8 +131,16 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
   if (!options.output_calibration.empty())
   {
     std::ostringstream yaml;
-    if (!camera_calibration_parsers::writeCalibrationYml(
-            yaml, input.file.camera_name, fittedCameraInfo(input.file.info, solution.lens)))
+    sensor_msgs::CameraInfo fitted = fittedCameraInfo(input.file.info, solution.lens);
+    if (options.fit_distortion)
+    {
+      // plumb_bob D = [k1, k2, 0, 0, 0]: D is on normalised coordinates, binning and ROI leave it alone.
+      const std::vector<double> d = solution.distortion.none() ? std::vector<double>(5, 0.0)
+                                                               : solution.distortion.coefficients();
+      fitted.distortion_model = "plumb_bob";
+      fitted.D = {d[0], d[1], 0.0, 0.0, 0.0};
+    }
+    if (!camera_calibration_parsers::writeCalibrationYml(yaml, input.file.camera_name, fitted))
     {
       return reportError(err, options.output_calibration + ": the fitted calibration could not be formatted");
     }
@@ -164,6 +174,19 @@ int solveAndWrite(const CalibrateOptions& options, const CalibrationInput& input
     if (!options.output_calibration.empty())
     {
       out << "  written to " << options.output_calibration << ": use it as calibration_file:=\n";
+    }
+  }
+  if (options.fit_distortion)
+  {
+    const std::vector<double> d =
+        solution.distortion.none() ? std::vector<double>(5, 0.0) : solution.distortion.coefficients();
+    out << "Fitted distortion (plumb_bob, 1 sigma): k1 " << fixedDecimals(d[0], 5) << " +- "
+        << fixedDecimals(solution.distortion_stddev[0], 5) << ", k2 " << fixedDecimals(d[1], 5) << " +- "
+        << fixedDecimals(solution.distortion_stddev[1], 5) << " (the calibration's D is not used by the solver)\n";
+    if (!options.output_calibration.empty())
+    {
+      out << "  written to " << options.output_calibration << " as D = [k1, k2, 0, 0, 0]: use it as "
+          << "calibration_file:=\n";
     }
   }
   return kExitOk;

@@ -223,7 +223,11 @@ DenseMountSolution solveMountDense(const PinholeModel& lens, const std::vector<F
   }
   std::vector<Pose> starts;
   Pose start;
-  if (homographyStart(lens, options.distortion, points, start))
+  if (prior == nullptr && !options.homography_start)
+  {
+    return failure("homography_start is off and no prior mount was given: nothing to start from");
+  }
+  if (options.homography_start && homographyStart(lens, options.distortion, points, start))
   {
     starts.push_back(start);
   }

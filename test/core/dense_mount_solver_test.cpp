@@ -135,17 +135,27 @@ TEST(DenseMountSolver, TwentyThousandPointsFromAPriorThreeDegreesAndFiveCentimet
   ASSERT_GT(points.size(), 15000u);
   const ProjectorMount prior{kDemo.x + 0.03, kDemo.y - 0.03, kDemo.z + 0.03, 1.7 * kDeg, kDemo.pitch - 1.7 * kDeg,
                              1.7 * kDeg};
-  const auto t0 = std::chrono::steady_clock::now();
-  const DenseMountSolution s = solveMountDense(truth.model(), points, &prior);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "[ info ] " << points.size() << " points solved in " << seconds << " s\n";
-  ASSERT_TRUE(s.ok) << s.error;
-  const Mount fitted = mount_oracle::fromSolution(s.mount);
-  EXPECT_LT(distortion_oracle::positionError(fitted, kDemo), 0.002);
-  EXPECT_LT(mount_oracle::rotationAngle(fitted, kDemo), 0.05 * kDeg);
-  const distortion_oracle::FloorError e = distortion_oracle::floorError(truth, kDemo, fittedLens(s), fitted);
-  EXPECT_LE(e.median_mm, 1.0);
-  EXPECT_LE(e.max_mm, 3.0);
+  for (bool homography : {true, false})
+  {
+    SCOPED_TRACE(homography ? "homography and prior starts" : "the prior start alone");
+    DenseSolveOptions options;
+    options.homography_start = homography;
+    const auto t0 = std::chrono::steady_clock::now();
+    const DenseMountSolution s = solveMountDense(truth.model(), points, &prior, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::cout << "[ info ] " << points.size() << " points solved in " << seconds << " s ("
+              << (homography ? "homography and prior" : "prior alone") << ")\n";
+    ASSERT_TRUE(s.ok) << s.error;
+    const Mount fitted = mount_oracle::fromSolution(s.mount);
+    EXPECT_LT(distortion_oracle::positionError(fitted, kDemo), 0.002);
+    EXPECT_LT(mount_oracle::rotationAngle(fitted, kDemo), 0.05 * kDeg);
+    const distortion_oracle::FloorError e = distortion_oracle::floorError(truth, kDemo, fittedLens(s), fitted);
+    EXPECT_LE(e.median_mm, 1.0);
+    EXPECT_LE(e.max_mm, 3.0);
+  }
+  DenseSolveOptions no_start;
+  no_start.homography_start = false;
+  expectRefused(solveMountDense(truth.model(), points, nullptr, no_start), "nothing to start from");
 }
 
 TEST(DenseMountSolver, FixingTheDistortionOfAWideAngleLensCostsCentimetres)

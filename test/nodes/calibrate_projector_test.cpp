@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <fstream>
+#include <iomanip>
 #include <vector>
 
 #include "child_process.h"
@@ -310,6 +311,95 @@ TEST(CalibrateProjectorSolve, FitIntrinsicsWritesTheFittedCalibration)
   EXPECT_NEAR(kMount.pitch, mount["pitch"].as<double>(), 1e-5);
 }
 
+/// A copy of config/pa503w.yaml with plumb_bob D = [k1, k2, 0, 0, 0].
+std::string distortedPa503w(double k1, double k2)
+{
+  std::string yaml = rviz_projector_test::readFile(kPa503w);
+  const std::string from = "data: [0.0, 0.0, 0.0, 0.0, 0.0]";
+  EXPECT_NE(std::string::npos, yaml.find(from));
+  std::ostringstream d;
+  d << std::setprecision(17) << "data: [" << k1 << ", " << k2 << ", 0.0, 0.0, 0.0]";
+  yaml.replace(yaml.find(from), from.size(), d.str());
+  return yaml;
+}
+
+TEST(CalibrateProjectorSolve, FitDistortionWritesK1K2InTheCalibration)
+{
+  // The true lens: the PA503W with k1 = -0.1, k2 = 0.02. The 5 x 5 crosshairs' floor points by the
+  // oracle: image_geometry's rectifyPoint (cv::undistortPoints) of each raw crosshair pixel, its ray.
+  Dir dir;
+  rviz_projector_test::writeFile(dir.file("true.yaml"), distortedPa503w(-0.1, 0.02));
+  image_geometry::PinholeCameraModel truth;
+  ASSERT_TRUE(rviz_projector_test::lensFromFile(dir.file("true.yaml"), truth));
+  std::vector<TestPoint> points;
+  const rviz_projector_test::TestPose pose = rviz_projector_test::opticalPoseByHand(kMount);
+  for (int r = 0; r < 5; ++r)
+  {
+    for (int c = 0; c < 5; ++c)
+    {
+      // The 5 x 5 pattern: u + 0.5 = 1280 (0.1 + 0.2 c), v + 0.5 = 800 (0.1 + 0.2 r), on pixel
+      // boundaries, rounded half up: u = 128, 384, ..., 1152, v = 80, 240, ..., 720.
+      TestPoint p{5 * r + c + 1, std::round(1280 * (0.1 + 0.2 * c)), std::round(800 * (0.1 + 0.2 * r)), {}};
+      const cv::Point2d rectified = truth.rectifyPoint(cv::Point2d(p.u, p.v));
+      ASSERT_TRUE(rviz_projector_test::pixelOnPlane(truth, pose, rectified.x, rectified.y, 0.0, p.world));
+      points.push_back(p);
+    }
+  }
+  rviz_projector_test::writeFile(dir.file("points.yaml"), rviz_projector_test::pointsYaml("base_link", points));
+  // The prior calibration has no distortion (config/pa503w.yaml).
+  const auto result = calibrate({"--camera-info", kPa503w, "--points", dir.file("points.yaml"), "--rows", "5",
+                                 "--cols", "5", "--fit-distortion", "--tape-error", "1", "--output-calibration",
+                                 dir.file("cal.yaml"), "--output", dir.file("mount.yaml")});
+  ASSERT_EQ(0, result.status) << result.out << result.err;
+  EXPECT_NE(std::string::npos, result.out.find("Fitted distortion (plumb_bob, 1 sigma): k1 -0.10000")) << result.out;
+
+  // Read back by the oracle's loader: D and the model; K and P unchanged.
+  image_geometry::PinholeCameraModel fitted;
+  ASSERT_TRUE(rviz_projector_test::lensFromFile(dir.file("cal.yaml"), fitted))
+      << rviz_projector_test::readFile(dir.file("cal.yaml"));
+  EXPECT_EQ("plumb_bob", fitted.cameraInfo().distortion_model);
+  ASSERT_EQ(5u, fitted.cameraInfo().D.size());
+  EXPECT_NEAR(-0.1, fitted.cameraInfo().D[0], 1e-5);
+  EXPECT_NEAR(0.02, fitted.cameraInfo().D[1], 1e-4);
+  EXPECT_EQ(0.0, fitted.cameraInfo().D[2]);
+  EXPECT_EQ(0.0, fitted.cameraInfo().D[3]);
+  EXPECT_EQ(0.0, fitted.cameraInfo().D[4]);
+  EXPECT_EQ(1900.0, fitted.fx());
+  EXPECT_EQ(817.0, fitted.cy());
+  EXPECT_EQ(817.0, fitted.cameraInfo().K[5]);
+  std::map<std::string, double> written;
+  const YAML::Node mount = YAML::LoadFile(dir.file("mount.yaml"));
+  for (const char* key : {"x", "y", "z", "roll", "pitch", "yaw"})
+  {
+    written[key] = mount[key].as<double>();
+  }
+  expectMount(kMount, written, 1e-5);
+
+  // calibrate_projector's own reader takes the written file back.
+  const auto again = calibrate({"--pattern", "--camera-info", dir.file("cal.yaml")});
+  EXPECT_EQ(0, again.status) << again.err;
+
+  // 9 crosshairs measured to 3 mm cannot pin k1: an error, nothing written.
+  std::vector<TestPoint> nine;
+  for (const TestPoint& p : points)
+  {
+    if (p.id % 2 == 1)  // 1, 3, 5, 11, 13, 15, 21, 23, 25: the 3 x 3 over the same span
+    {
+      if ((p.id - 1) / 5 % 2 == 0)
+      {
+        nine.push_back(p);
+      }
+    }
+  }
+  ASSERT_EQ(9u, nine.size());
+  rviz_projector_test::writeFile(dir.file("nine.yaml"), rviz_projector_test::pointsYaml("base_link", nine));
+  const auto weak = calibrate({"--camera-info", kPa503w, "--points", dir.file("nine.yaml"), "--rows", "5", "--cols",
+                               "5", "--fit-distortion", "--output-calibration", dir.file("cal9.yaml")});
+  EXPECT_EQ(1, weak.status) << weak.out << weak.err;
+  EXPECT_NE(std::string::npos, weak.err.find("cannot pin the distortion")) << weak.err;
+  EXPECT_FALSE(rviz_projector_test::fileExists(dir.file("cal9.yaml")));
+}
+
 TEST(CalibrateProjectorSolve, APointAboveTheProjectorIsAnOutlier)
 {
   // Issue 23, defect 4: a z its crosshair's ray cannot reach (typed in cm, or the wrong plane) is
@@ -488,6 +578,8 @@ TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
       {"--pattern", "--camera-info", kPa503w, "--points", "points.yaml"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--bogus"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--output-calibration", "cal.yaml"},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--fit-intrinsics", "--fit-distortion"},
+      {"--pattern", "--camera-info", kPa503w, "--fit-distortion"},
       {"--clicked-points", "--camera-info", kPa503w},
       {"--camera-info"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--tape-error", "0"},

@@ -31,12 +31,14 @@ struct CalibrateOptions
   std::string camera_info;         ///< --camera-info: calibration YAML (path, package://, file://)
   std::string points;              ///< --points: points.yaml to solve from
   std::string output;              ///< --output: mount.yaml to write ("" = none)
-  std::string output_calibration;  ///< --output-calibration: the fitted calibration (--fit-intrinsics)
+  std::string output_calibration;  ///< --output-calibration: the fitted calibration (--fit-intrinsics/-distortion)
   std::string points_out;          ///< --points-out: points.yaml the clicked points are written to
   std::string frame = "base_link";  ///< --frame: frame of the template / the clicked points
   int rows = CrosshairPatternSize::kDefaultRows;
   int cols = CrosshairPatternSize::kDefaultCols;
   bool fit_intrinsics = false;
+  /// --fit-distortion: also fit k1, k2 (written as plumb_bob D = [k1, k2, 0, 0, 0]).
+  bool fit_distortion = false;
   /// --tape-error MM: how accurately the points were measured (1 sigma), metres.
   double tape_error = MountSolverOptions().tape_error;
   /// --fit-distortion: also fit k1, k2 from the floor points (always fitted with --camera).

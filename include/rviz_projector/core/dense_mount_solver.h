@@ -26,6 +26,9 @@ struct DenseSolveOptions
   /// The prior's distortion: the start of k1, k2 (its other coefficients are dropped when fitting),
   /// the distortion used as it is when fit_distortion is false.
   LensDistortion distortion;
+  /// Try the homography + IPPE start (see solveMountDense). false: start from the prior alone
+  /// (then it must be given), e.g. when the caller trusts its prior.
+  bool homography_start = true;
   /// Outliers: a point whose reprojection error is above max(outlier_px, outlier_median_factor x
   /// the median reprojection error of all points) is left out. For Gaussian pixel noise the
   /// median error is 1.18 sigma, so 4 x median is 4.7 sigma (1 good point in 60,000 lost), while a
