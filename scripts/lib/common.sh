@@ -27,16 +27,16 @@ rp_packages() {
       ros-noetic-nav-msgs ros-noetic-sensor-msgs ros-noetic-geometry-msgs ros-noetic-visualization-msgs
       ros-noetic-std-msgs ros-noetic-tf2 ros-noetic-tf2-ros ros-noetic-tf2-geometry-msgs ros-noetic-rostest
       ros-noetic-roslaunch ros-noetic-rosbash ros-noetic-rosservice ros-noetic-image-view ros-noetic-rostopic ros-noetic-camera-calibration-parsers ros-noetic-image-geometry
-      ros-noetic-roslib ros-noetic-diagnostic-updater ros-noetic-diagnostic-msgs ros-noetic-std-srvs ros-noetic-actionlib-msgs ros-noetic-cv-bridge"
+      ros-noetic-roslib ros-noetic-diagnostic-updater ros-noetic-diagnostic-msgs ros-noetic-std-srvs ros-noetic-actionlib-msgs ros-noetic-cv-bridge libopencv-contrib-dev"
   else
     echo "$common catkin python3-catkin-pkg python3-rospkg python3-empy ros-message-generation
       libroscpp-dev librviz-dev rviz pluginlib-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
       libvisualization-msgs-dev libstd-msgs-dev libtf2-dev libtf2-ros-dev libtf2-geometry-msgs-dev
       librostest-dev python3-rostest python3-roslaunch python3-rosmaster python3-rosnode python3-rostopic python3-rosservice
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
-      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev python3-nav-msgs python3-sensor-msgs python3-rviz python3-visualization-msgs
+      tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev libopencv-contrib-dev python3-nav-msgs python3-sensor-msgs python3-rviz python3-visualization-msgs
       libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
-      libactionlib-msgs-dev libcv-bridge-dev libopencv-contrib-dev python3-tf2-ros"
+      libactionlib-msgs-dev libcv-bridge-dev python3-tf2-ros"
   fi
 }
 

@@ -1,0 +1,208 @@
+// Test-only camera simulator for the structured-light tests: a projector lights the floor with a
+// pattern, a camera on the robot photographs it. Independent of the code under test: OpenCV's
+// cv::undistortPoints (camera) and cv::projectPoints (projector) and plain matrix maths only.
+//
+// Per camera pixel, ss x ss sub-samples: raw pixel -> cv::undistortPoints (camera K, D) -> ray in the
+// base frame -> floor z = 0 -> cv::projectPoints (true projector pose, K, D) -> the pattern's pixel
+// there (nearest; dark outside the image). Captured value = 255 (ambient + gain * mean lit), then a
+// Gaussian blur (camera optics) and Gaussian noise (fixed seed), rounded and saturated to 8 bits.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace rviz_projector
+{
+namespace sim
+{
+struct Lens
+{
+  int width = 0;
+  int height = 0;
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
+  std::vector<double> D;  ///< plumb_bob (k1, k2, p1, p2, k3); empty: none
+
+  cv::Matx33d K() const { return cv::Matx33d(fx, 0, cx, 0, fy, cy, 0, 0, 1); }
+  cv::Mat distortion() const { return D.empty() ? cv::Mat::zeros(1, 5, CV_64F) : cv::Mat(D, true).reshape(1, 1); }
+};
+
+/// p_base = R p_optical + t.
+struct Pose
+{
+  cv::Matx33d R = cv::Matx33d::eye();
+  cv::Vec3d t;
+};
+
+/// Mount as projector.launch takes it (R = Rz(yaw) Ry(pitch) Rx(roll), positive pitch down), then
+/// body -> optical (z forward along body x, x right = body -y, y down = body -z). Written out here
+/// rather than taken from the core so that the simulation does not share its conventions' code.
+inline Pose mountPose(double x, double y, double z, double roll, double pitch, double yaw)
+{
+  const double cr = std::cos(roll), sr = std::sin(roll), cp = std::cos(pitch), sp = std::sin(pitch);
+  const double cyaw = std::cos(yaw), syaw = std::sin(yaw);
+  const cv::Matx33d rx(1, 0, 0, 0, cr, -sr, 0, sr, cr);
+  const cv::Matx33d ry(cp, 0, sp, 0, 1, 0, -sp, 0, cp);
+  const cv::Matx33d rz(cyaw, -syaw, 0, syaw, cyaw, 0, 0, 0, 1);
+  // Columns: optical x, y, z in body coordinates.
+  const cv::Matx33d body_optical(0, 0, 1, -1, 0, 0, 0, -1, 0);
+  Pose pose;
+  pose.R = rz * ry * rx * body_optical;
+  pose.t = cv::Vec3d(x, y, z);
+  return pose;
+}
+
+struct Scene
+{
+  Lens projector;
+  Pose projector_pose;
+  Lens camera;
+  Pose camera_pose;
+  int supersample = 4;
+  double ambient = 0.2;     ///< of full scale, on the floor whatever the projector shows
+  double gain = 0.7;        ///< full-scale fraction added by a white projector pixel
+  double blur_sigma = 1.0;  ///< camera pixels
+  double noise_sigma = 2.0; ///< grey levels
+};
+
+/// The demo's projector (1280x800, fx = fy = 1900, cx = 640, cy = 750) 1.2 m up, 0.15 m ahead,
+/// pitched down 0.876 rad; a 640x480 camera (fx = fy = 500, k1 = -0.1) beside it that sees the patch.
+inline Scene demoScene(bool wide_angle_projector)
+{
+  Scene scene;
+  scene.projector = Lens{1280, 800, 1900.0, 1900.0, 640.0, 750.0, {}};
+  if (wide_angle_projector)
+  {
+    scene.projector.D = {-0.2, 0.05, 0.0, 0.0, 0.0};
+  }
+  scene.projector_pose = mountPose(0.15, 0.0, 1.2, 0.0, 0.876, 0.0);
+  scene.camera = Lens{640, 480, 500.0, 500.0, 322.5, 237.0, {-0.1, 0.0, 0.0, 0.0, 0.0}};
+  scene.camera_pose = mountPose(0.1, 0.05, 1.3, 0.01, 0.72, -0.02);
+  return scene;
+}
+
+/// Rotation vector and translation of the base frame in a lens's optical frame (what
+/// cv::projectPoints takes).
+inline void opticalFromBase(const Pose& base_T_optical, cv::Vec3d& rvec, cv::Vec3d& tvec)
+{
+  const cv::Matx33d r = base_T_optical.R.t();
+  cv::Rodrigues(r, rvec);
+  tvec = -(r * base_T_optical.t);
+}
+
+/// Pixels of base-frame points through the true projector (pose and distortion).
+inline std::vector<cv::Point2d> projectWithProjector(const Scene& scene, const std::vector<cv::Point3d>& points)
+{
+  cv::Vec3d rvec, tvec;
+  opticalFromBase(scene.projector_pose, rvec, tvec);
+  std::vector<cv::Point2d> pixels;
+  cv::projectPoints(points, rvec, tvec, scene.projector.K(), scene.projector.distortion(), pixels);
+  return pixels;
+}
+
+class Camera
+{
+public:
+  explicit Camera(const Scene& scene) : scene_(scene)
+  {
+    const int ss = scene.supersample;
+    const int w = scene.camera.width, h = scene.camera.height;
+    std::vector<cv::Point2d> raw;
+    raw.reserve(std::size_t(w) * std::size_t(h) * std::size_t(ss * ss));
+    for (int y = 0; y < h; ++y)
+    {
+      for (int x = 0; x < w; ++x)
+      {
+        for (int j = 0; j < ss; ++j)
+        {
+          for (int i = 0; i < ss; ++i)
+          {
+            raw.emplace_back(x + (i + 0.5) / ss - 0.5, y + (j + 0.5) / ss - 0.5);
+          }
+        }
+      }
+    }
+    std::vector<cv::Point2d> normalised;
+    cv::undistortPoints(raw, normalised, scene.camera.K(), scene.camera.distortion(), cv::noArray(), cv::noArray(),
+                        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-12));
+    std::vector<cv::Point3d> floor;
+    std::vector<std::size_t> which;
+    const cv::Matx33d p_r = scene.projector_pose.R.t();
+    for (std::size_t k = 0; k < normalised.size(); ++k)
+    {
+      const cv::Vec3d d = scene.camera_pose.R * cv::Vec3d(normalised[k].x, normalised[k].y, 1.0);
+      const double s = -scene.camera_pose.t[2] / d[2];
+      if (!(d[2] < 0.0) || !(s > 0.0))
+      {
+        continue;
+      }
+      const cv::Vec3d p = scene.camera_pose.t + s * d;
+      // In front of the projector and within a sane field (its distortion polynomial is only
+      // meaningful near the image).
+      const cv::Vec3d q = p_r * (p - scene.projector_pose.t);
+      if (!(q[2] > 0.0) || std::hypot(q[0] / q[2], q[1] / q[2]) > 1.5)
+      {
+        continue;
+      }
+      floor.emplace_back(p[0], p[1], p[2]);
+      which.push_back(k);
+    }
+    const std::vector<cv::Point2d> pixels = projectWithProjector(scene, floor);
+    index_.assign(raw.size(), -1);
+    for (std::size_t n = 0; n < which.size(); ++n)
+    {
+      const double u = std::floor(pixels[n].x + 0.5), v = std::floor(pixels[n].y + 0.5);
+      if (u >= 0 && v >= 0 && u < scene.projector.width && v < scene.projector.height)
+      {
+        index_[which[n]] = int(v) * scene.projector.width + int(u);
+      }
+    }
+  }
+
+  /// The capture of one projected frame (CV_8UC1, projector size); `seed` makes the noise.
+  cv::Mat capture(const cv::Mat& pattern, std::uint64_t seed) const
+  {
+    const int ss2 = scene_.supersample * scene_.supersample;
+    const int w = scene_.camera.width, h = scene_.camera.height;
+    cv::Mat light(h, w, CV_32F);
+    const uchar* p = pattern.ptr<uchar>(0);  // generated patterns are continuous
+    std::size_t k = 0;
+    for (int y = 0; y < h; ++y)
+    {
+      float* row = light.ptr<float>(y);
+      for (int x = 0; x < w; ++x)
+      {
+        int sum = 0;
+        for (int s = 0; s < ss2; ++s, ++k)
+        {
+          sum += index_[k] >= 0 ? p[index_[k]] : 0;
+        }
+        row[x] = float(255.0 * (scene_.ambient + scene_.gain * sum / (255.0 * ss2)));
+      }
+    }
+    if (scene_.blur_sigma > 0.0)
+    {
+      cv::GaussianBlur(light, light, cv::Size(0, 0), scene_.blur_sigma);
+    }
+    if (scene_.noise_sigma > 0.0)
+    {
+      cv::Mat noise(h, w, CV_32F);
+      cv::RNG rng(seed);
+      rng.fill(noise, cv::RNG::NORMAL, 0.0, scene_.noise_sigma);
+      light += noise;
+    }
+    cv::Mat out;
+    light.convertTo(out, CV_8U);  // rounds and saturates
+    return out;
+  }
+
+private:
+  Scene scene_;
+  std::vector<int> index_;  ///< per sub-sample: projector pixel index, -1 where unlit
+};
+}  // namespace sim
+}  // namespace rviz_projector
