@@ -1,6 +1,7 @@
 #include "rviz_projector/calibration/pattern_capture.h"
 
 #include <cv_bridge/cv_bridge.h>
+#include <ros/callback_queue.h>
 #include <sensor_msgs/image_encodings.h>
 
 namespace rviz_projector

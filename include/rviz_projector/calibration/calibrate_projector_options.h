@@ -41,8 +41,6 @@ struct CalibrateOptions
   bool fit_distortion = false;
   /// --tape-error MM: how accurately the points were measured (1 sigma), metres.
   double tape_error = MountSolverOptions().tape_error;
-  /// --fit-distortion: also fit k1, k2 from the floor points (always fitted with --camera).
-  bool fit_distortion = false;
   // --camera (issue 24):
   std::string image = "/camera/image_raw";          ///< --image: the camera's image (CameraInfo beside it)
   std::string pattern_topic = "/projector/pattern";  ///< --pattern-topic: the ProjectorCamera's Pattern topic
