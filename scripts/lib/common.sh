@@ -27,7 +27,7 @@ rp_packages() {
       ros-noetic-nav-msgs ros-noetic-sensor-msgs ros-noetic-geometry-msgs ros-noetic-visualization-msgs
       ros-noetic-std-msgs ros-noetic-tf2 ros-noetic-tf2-ros ros-noetic-tf2-geometry-msgs ros-noetic-rostest
       ros-noetic-roslaunch ros-noetic-rosbash ros-noetic-rosservice ros-noetic-image-view ros-noetic-rostopic ros-noetic-camera-calibration-parsers ros-noetic-image-geometry
-      ros-noetic-roslib ros-noetic-diagnostic-updater ros-noetic-diagnostic-msgs ros-noetic-std-srvs ros-noetic-actionlib-msgs ros-noetic-cv-bridge libopencv-contrib-dev"
+      ros-noetic-roslib ros-noetic-diagnostic-updater ros-noetic-diagnostic-msgs ros-noetic-std-srvs ros-noetic-actionlib-msgs ros-noetic-cv-bridge ros-noetic-rosgraph-msgs libopencv-contrib-dev"
   else
     echo "$common catkin python3-catkin-pkg python3-rospkg python3-empy ros-message-generation
       libroscpp-dev librviz-dev rviz pluginlib-dev libnav-msgs-dev libsensor-msgs-dev libgeometry-msgs-dev
@@ -36,7 +36,7 @@ rp_packages() {
       rosbash libimage-view-dev libnodeletlib-tools ros-image-view catkin-lint libcamera-calibration-parsers-dev
       tf2-tools clang libclang-rt-14-dev libimage-geometry-dev libopencv-dev libopencv-contrib-dev python3-nav-msgs python3-sensor-msgs python3-rviz python3-visualization-msgs
       libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libstd-srvs-dev python3-std-srvs
-      libactionlib-msgs-dev libcv-bridge-dev python3-tf2-ros"
+      libactionlib-msgs-dev libcv-bridge-dev python3-tf2-ros libros-rosgraph-msgs-dev"
   fi
 }
 
