@@ -105,6 +105,10 @@ std::string checkSettings(const CameraSimulationSettings& s)
   {
     problems << "ambient must be in [0, 1] (" << s.ambient << "). ";
   }
+  if (!finite(s.gain) || s.gain < 0.0 || s.gain > 10.0)
+  {
+    problems << "gain must be in [0, 10] (" << s.gain << "). ";
+  }
   if (!finite(s.blur) || s.blur < 0.0 || s.blur > 50.0)
   {
     problems << "blur must be in [0, 50] pixels (" << s.blur << "). ";
@@ -353,7 +357,7 @@ cv::Mat CameraSimulation::renderClean(const cv::Mat& luminance)
   cv::Mat mean;
   // An integer factor: INTER_AREA is the exact mean of each pixel's sub-pixels.
   cv::resize(sub_, mean, cv::Size(settings_.width, settings_.height), 0.0, 0.0, cv::INTER_AREA);
-  mean.convertTo(clean, CV_32F, 1.0 - settings_.ambient, ambient);
+  mean.convertTo(clean, CV_32F, settings_.gain, ambient);
   if (settings_.blur > 0.0)
   {
     cv::GaussianBlur(clean, clean, cv::Size(0, 0), settings_.blur, settings_.blur, cv::BORDER_REPLICATE);

@@ -21,7 +21,7 @@
 // projecting back) -> ray in the base frame -> floor z = 0 -> projector pixel through the TRUE
 // projector pose and lens (cv::projectPoints with its D) -> bilinear sample of the projector's
 // luminance. The maps are computed once per projector image size; a frame is one cv::remap. Then
-// intensity = ambient + (1 - ambient) * luminance (grey levels / 255), a Gaussian blur of `blur`
+// intensity = ambient + gain * luminance (clipped) (grey levels / 255), a Gaussian blur of `blur`
 // pixels (sigma; the lens' and sensor's blur), Gaussian noise of `noise` (sigma, grey levels / 255),
 // rounded and clipped to 8 bits. A camera ray that misses the floor (above the horizon), a floor
 // point behind the projector, outside its image, or outside the projector lens' own field of view
@@ -74,6 +74,9 @@ struct CameraSimulationSettings
   MountPose projector_mount;
   int supersampling = 3;  ///< sub-pixels per camera pixel and axis, 1..4
   double ambient = 0.2;   ///< floor brightness without projector light, 0..1
+  /// What a white projector pixel adds on the floor, 0..10 of full scale (the camera's exposure:
+  /// ambient + gain above 1 saturates). 0.7 keeps white (0.9 with the default ambient) below clipping.
+  double gain = 0.7;
   double blur = 1.0;      ///< Gaussian blur sigma, camera pixels (0: none)
   double noise = 2.0 / 255.0;  ///< Gaussian noise sigma, grey levels / 255
 };

@@ -36,7 +36,8 @@
 //     ~projector_pitch 0.8760580505981934, ~projector_yaw 0; ~projector_fx 1300, ~projector_fy 1300,
 //     ~projector_cx 639.5, ~projector_cy 399.5, ~projector_D [] (none). Its image size is the
 //     received image's: the lens is that image's lens.
-//   ~ambient 0.2 (floor brightness without projector light, 0..1), ~blur 1.0 (Gaussian sigma,
+//   ~ambient 0.2 (floor brightness without projector light, 0..1), ~gain 0.7 (what a white projector
+//   pixel adds, 0..10; ambient + gain above 1 saturates), ~blur 1.0 (Gaussian sigma,
 //   pixels), ~noise 0.00784 (= 2/255, Gaussian sigma in grey levels / 255), ~seed 1 (of the noise),
 //   ~supersampling 3 (sub-pixels per pixel and axis), ~exposure_delay 0.05 s (0..2).
 //   A parameter that does not make sense stops the node with a ROS_FATAL saying which.
@@ -150,6 +151,7 @@ Options readOptions(const ros::NodeHandle& pnh, std::string& problems)
 
   s.supersampling = p.param("supersampling", 3);
   s.ambient = p.param("ambient", 0.2);
+  s.gain = p.param("gain", 0.7);
   s.blur = p.param("blur", 1.0);
   s.noise = p.param("noise", 2.0 / 255.0);
   problems = p.problems();

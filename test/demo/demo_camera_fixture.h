@@ -99,6 +99,7 @@ struct Oracle
       EXPECT_EQ(d, 0.0) << "the oracle's projector is a pinhole";
     }
     ambient = 255.0 * param("ambient");
+    gain = param("gain");
     noise = 255.0 * param("noise");
     delay = param("exposure_delay");
   }
@@ -129,7 +130,7 @@ struct Oracle
   cv::Matx33d projector_r;
   cv::Vec3d projector_c;
   double pfx = 0, pfy = 0, pcx = 0, pcy = 0;
-  double ambient = 0, noise = 0, delay = 0;
+  double ambient = 0, gain = 0, noise = 0, delay = 0;
 };
 
 struct Frame

@@ -13,7 +13,7 @@
 //     the four corners (where the camera's distortion moves it by ~3 px);
 //   - the lit patch's edges (50 % level) are where the oracle maps the projector image's border,
 //     within 0.2 px;
-//   - levels: ambient + (1 - ambient) x luminance for grey mono8, rgb8 red, bgr8 blue, rgba8 green
+//   - levels: ambient + gain x luminance for grey mono8, rgb8 red, bgr8 blue, rgba8 green
 //     (Rec. 601 weights, alpha ignored); white is 255 (+- noise) inside the lit patch while the floor
 //     outside it stays ambient;
 //   - exposure delay: after the projector switches at t (ROS time taken just before publishing),
@@ -144,7 +144,6 @@ TEST(DemoCamera, LevelsAreAmbientPlusProjectorLuminance)
 {
   const Oracle oracle;
   const double ambient = oracle.ambient;
-  const double a = ambient / 255.0;
   struct Case
   {
     std::string encoding;
@@ -166,7 +165,7 @@ TEST(DemoCamera, LevelsAreAmbientPlusProjectorLuminance)
   }
   for (const Case& c : cases)
   {
-    const double expected = std::min(255.0, ambient + (1.0 - a) * c.luminance);
+    const double expected = std::min(255.0, ambient + oracle.gain * c.luminance);
     const ros::Time sent = harness->publish(projectorImage(c.encoding, c.pixel));
     Frame frame;
     ASSERT_TRUE(harness->waitForFrame(
@@ -193,7 +192,7 @@ TEST(DemoCamera, LevelsAreAmbientPlusProjectorLuminance)
 TEST(DemoCamera, LitPatchEndsWhereTheProjectorImageEnds)
 {
   const Oracle oracle;
-  const double level = 0.5 * (oracle.ambient + 255.0);
+  const double level = oracle.ambient + 0.5 * oracle.gain * 255.0;
   const ros::Time sent = harness->publish(projectorImage("mono8", {255}));
   Frame white;
   ASSERT_TRUE(harness->waitForFrame(sent, [&](const Frame& f) { return interiorNear(oracle, f, 255.0, 6.0); }, white));

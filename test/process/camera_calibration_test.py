@@ -24,12 +24,14 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import roslib.packages
 import rospy
 import rostest
 import yaml
+from sensor_msgs.msg import Image
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from host_process import HostProcess  # noqa: E402
@@ -126,6 +128,16 @@ class CameraCalibrationTest(unittest.TestCase):
         rospy.init_node("camera_calibration_test", anonymous=True)
         cls.host = HostProcess(CONFIG, label="camera_calibration_host")
         cls.tmp = tempfile.mkdtemp(prefix="camera_calibration_")
+        # The rig is up once the host publishes what it shows (demo_camera subscribed to it long
+        # before): a pattern published earlier could reach the screen but not the simulated camera.
+        received = []
+        sub = rospy.Subscriber("/projector/rendered/image", Image, lambda m: received.append(m.header.stamp))
+        deadline = time.monotonic() + 60.0
+        while len(received) < 3 and time.monotonic() < deadline and cls.host.alive():
+            time.sleep(0.05)
+        sub.unregister()
+        if len(received) < 3:
+            raise RuntimeError("projector_host published no Image output within 60 s:\n" + cls.host.log_tail())
 
     @classmethod
     def tearDownClass(cls):
