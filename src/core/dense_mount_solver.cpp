@@ -342,16 +342,9 @@ DenseMountSolution solveMountDense(const PinholeModel& lens, const std::vector<F
     sum_px += e * e;
   }
   s.rms_px = std::sqrt(sum_px / static_cast<double>(errors.size()));
-  std::vector<Vec2> pixels;
-  std::vector<double> planes;
-  for (int i : inliers)
-  {
-    pixels.push_back(points[static_cast<std::size_t>(i)].pixel);
-    planes.push_back(points[static_cast<std::size_t>(i)].world.z);
-  }
   std::vector<Vec3> hits;
   std::vector<bool> hit;
-  pixelsOnPlanes(lens, s.distortion, s.parent_T_optical, pixels, planes, hits, hit);
+  pointsOnPlanes(lens, s.distortion, s.parent_T_optical, points, inliers, hits, hit);
   std::vector<double> mm;
   for (std::size_t k = 0; k < inliers.size(); ++k)
   {

@@ -122,16 +122,9 @@ bool poseCovariance(const PinholeModel& lens, const LensDistortion& distortion, 
   const int n = static_cast<int>(inliers.size());
   // The measurement error (metres, per coordinate on the plane): estimated from the residuals on
   // the plane, never below tape_error.
-  std::vector<Vec2> pixels;
-  std::vector<double> planes;
-  for (int i : inliers)
-  {
-    pixels.push_back(points[static_cast<std::size_t>(i)].pixel);
-    planes.push_back(points[static_cast<std::size_t>(i)].world.z);
-  }
   std::vector<Vec3> hits;
   std::vector<bool> hit;
-  pixelsOnPlanes(lens, distortion, parentTOptical(pose), pixels, planes, hits, hit);
+  pointsOnPlanes(lens, distortion, parentTOptical(pose), points, inliers, hits, hit);
   double sum_sq = 0.0;
   for (std::size_t k = 0; k < inliers.size(); ++k)
   {

@@ -85,6 +85,10 @@ std::vector<double> reprojectionErrors(const PinholeModel& lens, const std::vect
 void pixelsOnPlanes(const PinholeModel& lens, const LensDistortion& distortion, const RigidTransform& parent_T_optical,
                     const std::vector<Vec2>& pixels, const std::vector<double>& plane_z, std::vector<Vec3>& out,
                     std::vector<bool>& hit);
+/// pixelsOnPlanes for the points `which` (each pixel on its own point's plane z).
+void pointsOnPlanes(const PinholeModel& lens, const LensDistortion& distortion, const RigidTransform& parent_T_optical,
+                    const std::vector<FloorPoint>& points, const std::vector<int>& which, std::vector<Vec3>& out,
+                    std::vector<bool>& hit);
 /// 1-sigma displacement (pixels, along the radius) of a fitted k1, k2 at the image corner from
 /// their 2 x 2 covariance: g C g^T with g = max(fx, fy) (r^3, r^5), r = lens.cornerRadius().
 double distortionCornerStddevPx(const PinholeModel& lens, const cv::Matx22d& k_covariance);

@@ -194,6 +194,20 @@ std::vector<double> reprojectionErrors(const PinholeModel& lens, const std::vect
   return errors;
 }
 
+void pointsOnPlanes(const PinholeModel& lens, const LensDistortion& distortion, const RigidTransform& parent_T_optical,
+                    const std::vector<FloorPoint>& points, const std::vector<int>& which, std::vector<Vec3>& out,
+                    std::vector<bool>& hit)
+{
+  std::vector<Vec2> pixels;
+  std::vector<double> planes;
+  for (int i : which)
+  {
+    pixels.push_back(points[static_cast<std::size_t>(i)].pixel);
+    planes.push_back(points[static_cast<std::size_t>(i)].world.z);
+  }
+  pixelsOnPlanes(lens, distortion, parent_T_optical, pixels, planes, out, hit);
+}
+
 void pixelsOnPlanes(const PinholeModel& lens, const LensDistortion& distortion, const RigidTransform& parent_T_optical,
                     const std::vector<Vec2>& pixels, const std::vector<double>& plane_z, std::vector<Vec3>& out,
                     std::vector<bool>& hit)

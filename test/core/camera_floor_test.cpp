@@ -15,35 +15,10 @@ namespace rviz_projector
 {
 namespace
 {
-LensCalibration calibrationOf(const sim::Lens& lens)
-{
-  LensCalibration c;
-  c.width = std::uint32_t(lens.width);
-  c.height = std::uint32_t(lens.height);
-  c.distortion_model = "plumb_bob";
-  c.D = lens.D.empty() ? std::vector<double>(5, 0.0) : lens.D;
-  c.K = {lens.fx, 0, lens.cx, 0, lens.fy, lens.cy, 0, 0, 1};
-  c.P = {lens.fx, 0, lens.cx, 0, 0, lens.fy, lens.cy, 0, 0, 0, 1, 0};
-  return c;
-}
-
-RigidTransform transformOf(const sim::Pose& pose)
-{
-  std::array<double, 9> r{};
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      r[std::size_t(3 * i + j)] = pose.R(i, j);
-    }
-  }
-  return RigidTransform::fromMatrix(r, Vec3{pose.t[0], pose.t[1], pose.t[2]});
-}
-
 LensCalibration simpleCamera(double k1)
 {
   sim::Lens lens{640, 480, 500.0, 500.0, 320.0, 240.0, {k1, 0.0, 0.0, 0.0, 0.0}};
-  return calibrationOf(lens);
+  return sim::calibrationOf(lens);
 }
 
 /// Camera at (1, 2, 1.5) looking straight down, image x along base x (image y along base -y).
@@ -164,7 +139,7 @@ Measured runScene(const sim::Scene& scene, const sim::Camera& camera, const Corr
   const auto t0 = std::chrono::steady_clock::now();
   const GrayDecodeResult decoded = decodeGrayCode(scene.projector.width, scene.projector.height, captures);
   const auto t1 = std::chrono::steady_clock::now();
-  const Correspondences c = floorCorrespondences(decoded, calibrationOf(scene.camera), camera_pose,
+  const Correspondences c = floorCorrespondences(decoded, sim::calibrationOf(scene.camera), camera_pose,
                                                  scene.projector.width, scene.projector.height, options);
   const auto t2 = std::chrono::steady_clock::now();
   m.decode_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
@@ -209,7 +184,7 @@ TEST_P(SimulatedCorrespondences, FloorPointsLandOnTheirProjectorPixels)
 {
   const sim::Scene scene = sim::demoScene(GetParam());
   const sim::Camera camera(scene);
-  const RigidTransform pose = transformOf(scene.camera_pose);
+  const RigidTransform pose = sim::transformOf(scene.camera_pose);
   const Measured fitted = runScene(scene, camera, CorrespondenceOptions(), pose);
   // Measured (pinhole / wide angle): coverage 0.29 / 0.37 (the camera is ~4x coarser than the
   // projector: an 8x8 cell holds ~3-4 camera pixels, and min_samples = 3 drops the sparser half),

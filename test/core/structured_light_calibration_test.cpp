@@ -22,31 +22,6 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-LensCalibration calibrationOf(const sim::Lens& lens)
-{
-  LensCalibration c;
-  c.width = std::uint32_t(lens.width);
-  c.height = std::uint32_t(lens.height);
-  c.distortion_model = "plumb_bob";
-  c.D = lens.D.empty() ? std::vector<double>(5, 0.0) : lens.D;
-  c.K = {lens.fx, 0, lens.cx, 0, lens.fy, lens.cy, 0, 0, 1};
-  c.P = {lens.fx, 0, lens.cx, 0, 0, lens.fy, lens.cy, 0, 0, 0, 1, 0};
-  return c;
-}
-
-RigidTransform transformOf(const sim::Pose& pose)
-{
-  std::array<double, 9> r{};
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      r[std::size_t(3 * i + j)] = pose.R(i, j);
-    }
-  }
-  return RigidTransform::fromMatrix(r, Vec3{pose.t[0], pose.t[1], pose.t[2]});
-}
-
 /// Where projector pixel (u, v) lands on the floor z = 0 through `lens` at `pose`; false if not.
 bool floorOf(const sim::Lens& lens, const sim::Pose& pose, double u, double v, cv::Point2d& out)
 {
@@ -82,8 +57,8 @@ CalibrationRun calibrate(sim::Scene scene, bool fit_distortion = true)
   CameraCalibrationInput input;
   input.lens = PinholeModel(std::uint32_t(scene.projector.width), std::uint32_t(scene.projector.height),
                             scene.projector.fx, scene.projector.fy, scene.projector.cx, scene.projector.cy);
-  input.camera = calibrationOf(scene.camera);
-  input.floor_T_camera = transformOf(scene.camera_pose);
+  input.camera = sim::calibrationOf(scene.camera);
+  input.floor_T_camera = sim::transformOf(scene.camera_pose);
   // The prior: the mount the projector believes, 5 cm and 3 deg of pitch off the truth.
   const ProjectorMount prior{0.20, 0.0, 1.2, 0.0, 0.876 + 3.0 * kPi / 180.0, 0.0};
   input.prior = &prior;
@@ -202,8 +177,8 @@ TEST(StructuredLightCalibration, FramesOfTheWrongPatternCannotBeDecodedAndAreRef
   }
   CameraCalibrationInput input;
   input.lens = PinholeModel(1280, 800, scene.projector.fx, scene.projector.fy, scene.projector.cx, scene.projector.cy);
-  input.camera = calibrationOf(scene.camera);
-  input.floor_T_camera = transformOf(scene.camera_pose);
+  input.camera = sim::calibrationOf(scene.camera);
+  input.floor_T_camera = sim::transformOf(scene.camera_pose);
   const CameraCalibrationResult result = solveFromCaptures(input, captures);
   EXPECT_NE(result.error.find("cannot be decoded"), std::string::npos) << result.error;
 }

@@ -8,6 +8,7 @@
 // Gaussian blur (camera optics) and Gaussian noise (fixed seed), rounded and saturated to 8 bits.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -15,6 +16,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "rviz_projector/core/lens_calibration.h"
+#include "rviz_projector/core/rigid_transform.h"
 
 namespace rviz_projector
 {
@@ -204,5 +208,31 @@ private:
   Scene scene_;
   std::vector<int> index_;  ///< per sub-sample: projector pixel index, -1 where unlit
 };
+/// The lens as a CameraInfo gives it (K = P, plumb_bob D), in the core's type.
+inline LensCalibration calibrationOf(const Lens& lens)
+{
+  LensCalibration c;
+  c.width = std::uint32_t(lens.width);
+  c.height = std::uint32_t(lens.height);
+  c.distortion_model = "plumb_bob";
+  c.D = lens.D.empty() ? std::vector<double>(5, 0.0) : lens.D;
+  c.K = {lens.fx, 0, lens.cx, 0, lens.fy, lens.cy, 0, 0, 1};
+  c.P = {lens.fx, 0, lens.cx, 0, 0, lens.fy, lens.cy, 0, 0, 0, 1, 0};
+  return c;
+}
+
+/// The pose in the core's type (p_base = R p_optical + t).
+inline RigidTransform transformOf(const Pose& pose)
+{
+  std::array<double, 9> r{};
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      r[std::size_t(3 * i + j)] = pose.R(i, j);
+    }
+  }
+  return RigidTransform::fromMatrix(r, Vec3{pose.t[0], pose.t[1], pose.t[2]});
+}
 }  // namespace sim
 }  // namespace rviz_projector
