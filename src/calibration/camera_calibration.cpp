@@ -79,8 +79,17 @@ sensor_msgs::CameraInfo withDistortion(sensor_msgs::CameraInfo info, const LensD
   return info;
 }
 
+/// Seconds of the run: all, showing and capturing the patterns, decoding and solving.
+struct Timing
+{
+  double total = 0.0;
+  double capture = 0.0;
+  double solve = 0.0;
+  std::size_t patterns = 0;
+};
+
 std::string report(const CameraCalibrationResult& r, const ProjectorMount& mount, const std::string& parent,
-                   const ProjectorMount* prior, double seconds, std::size_t camera_pixels)
+                   const ProjectorMount* prior, const Timing& timing, std::size_t camera_pixels)
 {
   const DenseMountSolution& s = r.solution;
   std::ostringstream text;
@@ -118,7 +127,9 @@ std::string report(const CameraCalibrationResult& r, const ProjectorMount& mount
   {
     text << "Warning: " << w << "\n";
   }
-  text << "Took " << fixedDecimals(seconds, 1) << " s\n";
+  text << "Took " << fixedDecimals(timing.total, 1) << " s (showing and capturing " << timing.patterns
+       << " patterns " << fixedDecimals(timing.capture, 1) << " s, decoding and solving "
+       << fixedDecimals(timing.solve, 2) << " s)\n";
   return text.str();
 }
 }  // namespace
@@ -181,6 +192,8 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
         << "': solving without the current mount as a start" << std::endl;
   }
 
+  Timing timing;
+  const auto capture_start = std::chrono::steady_clock::now();
   const std::vector<PatternFrame> frames = grayCodeFrames(int(input.lens.width()), int(input.lens.height()));
   std::vector<cv::Mat> captures(frames.size());
   for (std::size_t i = 0; i < frames.size(); ++i)
@@ -193,8 +206,12 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
     }
   }
   capture.end();
+  const auto solve_start = std::chrono::steady_clock::now();
+  timing.capture = std::chrono::duration<double>(solve_start - capture_start).count();
+  timing.patterns = frames.size();
   err << "calibrate_projector: decoding and solving" << std::endl;
   const CameraCalibrationResult result = solveFromCaptures(input, captures);
+  timing.solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
   if (!result.error.empty())
   {
     return reportError(err, result.error + " (nothing written)");
@@ -229,8 +246,8 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   {
     return reportError(err, error + " (no file written)");
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out << report(result, mount.mount, options.frame, input.prior != nullptr ? &prior_base : nullptr, seconds,
+  timing.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out << report(result, mount.mount, options.frame, input.prior != nullptr ? &prior_base : nullptr, timing,
                 captures.empty() ? 0 : captures[0].total());
   if (!options.output.empty())
   {
