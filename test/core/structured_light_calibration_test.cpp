@@ -43,11 +43,20 @@ struct CalibrationRun
   sim::Scene scene;
 };
 
-CalibrationRun calibrate(sim::Scene scene, bool fit_distortion = true)
+/// The simulated camera of the demo scene, traced once per projector lens for all tests.
+const sim::Camera& cameraOf(bool wide_angle)
+{
+  static const sim::Camera pinhole(sim::demoScene(false));
+  static const sim::Camera wide(sim::demoScene(true));
+  return wide_angle ? wide : pinhole;
+}
+
+CalibrationRun calibrate(bool wide_angle, bool fit_distortion = true, double gain = sim::Scene().gain)
 {
   CalibrationRun run;
+  const sim::Scene scene = sim::demoScene(wide_angle);
   run.scene = scene;
-  const sim::Camera camera(scene);
+  const sim::Camera camera = cameraOf(wide_angle).withLight(scene.ambient, gain);
   const std::vector<PatternFrame> frames = grayCodeFrames(scene.projector.width, scene.projector.height);
   std::vector<cv::Mat> captures;
   for (std::size_t i = 0; i < frames.size(); ++i)
@@ -119,12 +128,12 @@ void expectAccurate(const CalibrationRun& run, const char* what)
 
 TEST(StructuredLightCalibration, RecoversTheMountOfAPinholeProjectorFromAWrongPrior)
 {
-  expectAccurate(calibrate(sim::demoScene(false)), "pinhole");
+  expectAccurate(calibrate(false), "pinhole");
 }
 
 TEST(StructuredLightCalibration, RecoversTheMountAndTheDistortionOfAWideAngleLens)
 {
-  const CalibrationRun run = calibrate(sim::demoScene(true));
+  const CalibrationRun run = calibrate(true);
   expectAccurate(run, "wide angle");
   const std::vector<double>& d = run.result.solution.distortion.coefficients();
   ASSERT_GE(d.size(), 2u);
@@ -136,7 +145,7 @@ TEST(StructuredLightCalibration, IgnoringTheWideAngleLensLeavesCentimetres)
 {
   // The same captures with the distortion kept at zero (--keep-distortion on a file without D):
   // the 8 / 54 mm. Shows that the fit is what brings the floor error down.
-  const CalibrationRun run = calibrate(sim::demoScene(true), false);
+  const CalibrationRun run = calibrate(true, false);
   if (!run.result.error.empty())
   {
     SUCCEED() << "refused: " << run.result.error;  // a refusal is fine too: never a wrong answer
@@ -149,17 +158,13 @@ TEST(StructuredLightCalibration, IgnoringTheWideAngleLensLeavesCentimetres)
 
 TEST(StructuredLightCalibration, ACameraSeeingNothingLitIsRefused)
 {
-  sim::Scene scene = sim::demoScene(false);
-  scene.gain = 0.0;  // the projector's light never reaches the camera
-  const CalibrationRun run = calibrate(scene);
+  const CalibrationRun run = calibrate(false, true, 0.0);  // the projector's light never reaches the camera
   EXPECT_NE(run.result.error.find("sees too little of the projection"), std::string::npos) << run.result.error;
 }
 
 TEST(StructuredLightCalibration, SaturatingPatternsAreRefused)
 {
-  sim::Scene scene = sim::demoScene(false);
-  scene.gain = 3.0;  // white far beyond the camera's range
-  const CalibrationRun run = calibrate(scene);
+  const CalibrationRun run = calibrate(false, true, 3.0);  // white far beyond the camera's range
   EXPECT_NE(run.result.error.find("saturate"), std::string::npos) << run.result.error;
 }
 
@@ -167,8 +172,8 @@ TEST(StructuredLightCalibration, FramesOfTheWrongPatternCannotBeDecodedAndAreRef
 {
   // Every pattern frame captured while the white frame was still on (captured before its pattern
   // was on screen): white and black are right, no bit has contrast.
-  sim::Scene scene = sim::demoScene(false);
-  const sim::Camera camera(scene);
+  const sim::Scene scene = sim::demoScene(false);
+  const sim::Camera& camera = cameraOf(false);
   const std::vector<PatternFrame> frames = grayCodeFrames(scene.projector.width, scene.projector.height);
   std::vector<cv::Mat> captures;
   for (std::size_t i = 0; i < frames.size(); ++i)

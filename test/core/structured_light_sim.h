@@ -167,6 +167,15 @@ public:
     }
   }
 
+  /// The same geometry under other light (ambient, gain): no new ray tracing.
+  Camera withLight(double ambient, double gain) const
+  {
+    Camera other(*this);
+    other.scene_.ambient = ambient;
+    other.scene_.gain = gain;
+    return other;
+  }
+
   /// The capture of one projected frame (CV_8UC1, projector size); `seed` makes the noise.
   cv::Mat capture(const cv::Mat& pattern, std::uint64_t seed) const
   {
