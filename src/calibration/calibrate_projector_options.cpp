@@ -29,12 +29,12 @@ bool parseTapeError(const std::string& text, double& metres)
   return true;
 }
 
-/// Seconds, 0 .. 10.
+/// Seconds, 0 .. 5 (well below the ProjectorCamera's default Pattern timeout, 10 s).
 bool parseSettle(const std::string& text, double& seconds)
 {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !(value >= 0.0 && value <= 10.0))
+  if (end == text.c_str() || *end != '\0' || !(value >= 0.0 && value <= 5.0))
   {
     return false;
   }
@@ -182,7 +182,7 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     {
       if (!parseSettle(value, *settle))
       {
-        return arg + " must be seconds from 0 to 10 (got '" + value + "')";
+        return arg + " must be seconds from 0 to 5 (got '" + value + "')";
       }
     }
     else if (tape_error != nullptr)

@@ -144,11 +144,20 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   }
   CameraCalibrationInput input;
   const LensCalibration projector = toLensCalibration(file.file.info);
-  if (const LensCheck check = PinholeModel::rawFromCalibration(projector, input.lens); !check.ok())
-  {
-    return reportError(err, file.file.path + ": K is unusable: " + check.error);
-  }
   input.fit_distortion = !options.keep_distortion;
+  if (const LensCheck check = LensDistortion::fromCalibration(projector, input.distortion); !check.ok())
+  {
+    return reportError(err, file.file.path + ": unusable distortion: " + check.error);
+  }
+  // The pixels the display will draw with the calibration written: through a distortion it draws
+  // with K (P is a rectified camera's), without one with P (PinholeModel::fromCalibration).
+  const bool drawn_through_k = input.fit_distortion || !input.distortion.none();
+  if (const LensCheck check = drawn_through_k ? PinholeModel::rawFromCalibration(projector, input.lens)
+                                              : PinholeModel::fromCalibration(projector, input.lens);
+      !check.ok())
+  {
+    return reportError(err, file.file.path + ": unusable lens: " + check.error);
+  }
   const std::string floor_frame = options.floor_frame.empty() ? options.frame : options.floor_frame;
 
   tf2_ros::Buffer tf;
@@ -235,8 +244,11 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   if (!options.output_calibration.empty())
   {
     std::ostringstream yaml;
-    if (!camera_calibration_parsers::writeCalibrationYml(yaml, file.file.camera_name,
-                                                         withDistortion(file.file.info, result.solution.distortion)))
+    // --keep-distortion: the file as it was (its D is what the solve used).
+    const sensor_msgs::CameraInfo written = options.keep_distortion
+                                                ? file.file.info
+                                                : withDistortion(file.file.info, result.solution.distortion);
+    if (!camera_calibration_parsers::writeCalibrationYml(yaml, file.file.camera_name, written))
     {
       return reportError(err, options.output_calibration + ": the calibration could not be formatted (nothing written)");
     }
@@ -255,8 +267,9 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   }
   if (!options.output_calibration.empty())
   {
-    out << "Calibration written to " << options.output_calibration << " (D = k1 k2 0 0 0, P = K): calibration_file:="
-        << options.output_calibration << "\n";
+    out << "Calibration written to " << options.output_calibration
+        << (options.keep_distortion ? " (unchanged: --keep-distortion)" : " (D = k1 k2 0 0 0, P = K)")
+        << ": calibration_file:=" << options.output_calibration << "\n";
   }
   return kExitOk;
 }

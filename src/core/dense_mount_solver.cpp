@@ -247,8 +247,10 @@ DenseMountSolution solveMountDense(const PinholeModel& lens, const std::vector<F
   }
   if (!std::isfinite(best_median))
   {
-    return failure("no start pose: the points do not look like one plane seen by the projector (check the pixels "
-                   "against the floor points), and no prior mount was given");
+    return failure(std::string("no start pose: the points do not look like one plane seen by the projector (check "
+                               "the pixels against the floor points), ") +
+                   (prior == nullptr ? "and no prior mount was given"
+                                     : "and the prior mount puts them behind the projector or off its image"));
   }
 
   // The fit: shrinking thresholds, then the outlier rule until the inliers stop changing.

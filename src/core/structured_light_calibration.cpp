@@ -70,6 +70,7 @@ CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, c
   }
   DenseSolveOptions options;
   options.fit_distortion = input.fit_distortion;
+  options.distortion = input.distortion;
   result.solution = solveMountDense(input.lens, found.points, input.prior, options);
   if (!result.solution.ok)
   {

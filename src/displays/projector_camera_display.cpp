@@ -223,7 +223,7 @@ void ProjectorCameraDisplay::unsubscribe()
   if (pattern_)
   {
     pattern_->unsubscribe();
-    deleteStatus("Pattern");
+    showPatternStatus();
   }
 }
 
@@ -234,15 +234,8 @@ void ProjectorCameraDisplay::updatePatternTopic()
     return;
   }
   markChanged();  // a pattern shown goes
-  const std::string error = pattern_->subscribe(isEnabled() ? props_.pattern_topic->getTopicStd() : std::string());
-  if (error.empty())
-  {
-    deleteStatus("Pattern");
-  }
-  else
-  {
-    setStatus(rviz::StatusProperty::Error, "Pattern", "Error subscribing: " + QString::fromStdString(error));
-  }
+  pattern_->subscribe(isEnabled() ? props_.pattern_topic->getTopicStd() : std::string());
+  showPatternStatus();  // ProjectorPattern owns the status, an error subscribing included
 }
 
 void ProjectorCameraDisplay::updateMotionOdometry()

@@ -5,6 +5,7 @@
 // only when the ProjectionGate says the projector would show something new.
 #include <algorithm>
 #include <chrono>
+#include <string>
 
 #include <OgreViewport.h>
 
@@ -50,6 +51,11 @@ void ProjectorCameraDisplay::pollPattern()
     markChanged();
     pattern_changed_ = true;
   }
+  showPatternStatus();
+}
+
+void ProjectorCameraDisplay::showPatternStatus()
+{
   if (pattern_->takeStatusChange())
   {
     const QString text = QString::fromStdString(pattern_->statusText());
@@ -236,9 +242,23 @@ void ProjectorCameraDisplay::renderNow()
   {
     gate_->invalidate();  // exposed again: the window's content must be drawn anew
   }
+  // A pattern is only ever shown pixel for pixel: a window that scales the image (another screen
+  // size, not full screen) refuses it rather than light the floor where no solver expects.
+  if (pattern_->shown() && (state.image.width != int(lens().width()) || state.image.height != int(lens().height())))
+  {
+    pattern_->refuse("Not shown: the output window shows the " + std::to_string(lens().width()) + "x" +
+                     std::to_string(lens().height()) + " image as " + std::to_string(state.image.width) + "x" +
+                     std::to_string(state.image.height) +
+                     " (scaled): a pattern is shown 1:1 only (a screen of the projector's resolution, Full screen on)");
+    showPatternStatus();
+    markChanged();
+    state.changes = ProjectionChangeCounter::value() + own_changes_;
+    state.drawable = hasLens() && (pipeline_.poseOk() || crosshairs_shown_);
+  }
   if (!gate_->needsFrame(state) && !publish)
   {
     ++frames_skipped_;  // the projector already shows exactly this
+    pattern_->frameShown();  // e.g. a 0 x 0 image while the scene was already shown: acknowledged
     return;
   }
   if (!crosshairs_shown_ && !pattern_->shown())

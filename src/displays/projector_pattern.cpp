@@ -131,6 +131,7 @@ std::string ProjectorPattern::subscribe(const std::string& topic)
   catch (const ros::Exception& e)
   {
     sub_.shutdown();
+    setStatus(Level::Error, std::string("Error subscribing: ") + e.what());
     return e.what();
   }
   return std::string();
@@ -208,6 +209,11 @@ bool ProjectorPattern::poll(std::uint32_t width, std::uint32_t height, double ti
     end("Ended: no pattern for " + seconds + " s (Pattern timeout): showing the scene again", Level::Warn);
   }
   return changed;
+}
+
+void ProjectorPattern::refuse(const std::string& why)
+{
+  end(why, Level::Error);
 }
 
 void ProjectorPattern::end(const std::string& why, Level level)

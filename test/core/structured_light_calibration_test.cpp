@@ -51,7 +51,8 @@ const sim::Camera& cameraOf(bool wide_angle)
   return wide_angle ? wide : pinhole;
 }
 
-CalibrationRun calibrate(bool wide_angle, bool fit_distortion = true, double gain = sim::Scene().gain)
+CalibrationRun calibrate(bool wide_angle, bool fit_distortion = true, double gain = sim::Scene().gain,
+                         const LensDistortion& file_distortion = LensDistortion())
 {
   CalibrationRun run;
   const sim::Scene scene = sim::demoScene(wide_angle);
@@ -72,6 +73,7 @@ CalibrationRun calibrate(bool wide_angle, bool fit_distortion = true, double gai
   const ProjectorMount prior{0.20, 0.0, 1.2, 0.0, 0.876 + 3.0 * kPi / 180.0, 0.0};
   input.prior = &prior;
   input.fit_distortion = fit_distortion;
+  input.distortion = file_distortion;
   run.result = solveFromCaptures(input, captures);
   return run;
 }
@@ -154,6 +156,15 @@ TEST(StructuredLightCalibration, IgnoringTheWideAngleLensLeavesCentimetres)
   const std::vector<double> errors = floorErrors(run);
   std::printf("  D kept at zero: floor median %.1f max %.1f mm\n", errors[errors.size() / 2], errors.back());
   EXPECT_GT(errors.back(), 10.0);
+}
+
+TEST(StructuredLightCalibration, AKnownDistortionIsKeptAndUsed)
+{
+  // --keep-distortion with a calibration file that has the true D: the mount is solved through it.
+  const LensDistortion truth(LensDistortion::Model::PlumbBob, {-0.2, 0.05, 0.0, 0.0, 0.0});
+  const CalibrationRun run = calibrate(true, false, sim::Scene().gain, truth);
+  expectAccurate(run, "wide angle, D kept");
+  EXPECT_EQ(run.result.solution.distortion.coefficients(), truth.coefficients());
 }
 
 TEST(StructuredLightCalibration, ACameraSeeingNothingLitIsRefused)

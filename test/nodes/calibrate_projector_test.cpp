@@ -584,6 +584,15 @@ TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
       {"--camera-info"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--tape-error", "0"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--tape-error", "3mm"},
+      // --camera (issue 24)
+      {"--camera", "--camera-info", kPa503w, "--settle", "6"},
+      {"--camera", "--camera-info", kPa503w, "--settle", "-1"},
+      {"--camera", "--camera-info", kPa503w, "--points", "points.yaml"},
+      {"--camera", "--camera-info", kPa503w, "--fit-distortion"},
+      {"--camera", "--pattern", "--camera-info", kPa503w},
+      {"--camera", "--camera-info", kPa503w, "--image", ""},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--settle", "0.2"},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--keep-distortion"},
   };
   for (const auto& args : command_lines)
   {

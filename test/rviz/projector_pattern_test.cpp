@@ -272,3 +272,26 @@ TEST_F(PatternTest, AnEmptyTopicTurnsTheInterfaceOff)
   EXPECT_GT(countColour(grab(), kGreen, 60), 200);
   EXPECT_TRUE(shown_.empty());
 }
+
+TEST_F(PatternTest, AnEndWhileNoPatternIsShownIsAcknowledgedAtOnce)
+{
+  // Nothing changes on screen (the scene is already shown), so no frame is needed: the
+  // acknowledgement must come anyway.
+  sensor_msgs::Image end;
+  end.header.frame_id = "end without a pattern";
+  ASSERT_TRUE(showAndWaitForAck(end, 7000.0)) << "a 0 x 0 image while the scene is shown was not acknowledged";
+}
+
+TEST_F(PatternTest, AWindowThatScalesTheImageRefusesThePattern)
+{
+  // A 640x400 lens on the 1280x800 projector screen: the image is shown at twice its size.
+  sensor_msgs::CameraInfo half = rviz_projector_test::projectorInfo(640, 400, 650, 319.5, 199.5);
+  info_pub_.publish(half);
+  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && projector_->lens().width() == 640u; }));
+  pattern_pub_.publish(noisePattern(640, 400, "scaled", 11));
+  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Pattern").level == rviz::StatusProperty::Error; }))
+      << statusOf(projector_, "Pattern").text.toStdString();
+  const QString text = statusOf(projector_, "Pattern").text;
+  EXPECT_TRUE(text.contains("640x400") && text.contains("1280x800") && text.contains("1:1")) << text.toStdString();
+  EXPECT_TRUE(shown_.empty()) << "a scaled pattern was acknowledged";
+}

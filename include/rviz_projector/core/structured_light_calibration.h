@@ -38,6 +38,9 @@ struct CameraCalibrationInput
   LensCalibration camera;               ///< the camera's CameraInfo (K, D)
   RigidTransform floor_T_camera;        ///< the camera's optical frame in the floor frame
   const ProjectorMount* prior = nullptr;  ///< the current mount in the floor frame, or none
+  /// The calibration file's distortion: kept as it is without fit_distortion, the start of k1, k2
+  /// with it.
+  LensDistortion distortion;
   bool fit_distortion = true;
   CameraCalibrationLimits limits;
 };

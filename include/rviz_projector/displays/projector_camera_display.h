@@ -159,6 +159,8 @@ private:
   bool updateCrosshairs();
   /// The Pattern topic's arrivals and timeout, and its "Pattern" status (onFrameTimer).
   void pollPattern();
+  /// The "Pattern" status as ProjectorPattern says, when it changed.
+  void showPatternStatus();
   /// Follows tf, the lens and the window; false when there is no window to draw into.
   bool prepareFrame();
   void updateFootprintVisible();

@@ -80,8 +80,12 @@ public:
   bool shown() const { return shown_; }
   /// The camera the projector's viewport uses while a pattern is shown.
   Ogre::Camera* camera() const { return camera_; }
-  /// The frame showing the current state went to the screen: acknowledges it once on /shown.
+  /// The frame showing the current state went to the screen (or already showed it): acknowledges it
+  /// once on /shown.
   void frameShown();
+  /// Ends the pattern shown, with an Error status `why`, never acknowledged (e.g. the output window
+  /// would scale it).
+  void refuse(const std::string& why);
 
   /// The "Pattern" status: level (None: no status) and text; `statusChanged()` since the last call.
   Level level() const { return level_; }
