@@ -183,7 +183,7 @@ class SimulatedCorrespondences : public ::testing::TestWithParam<bool>
 TEST_P(SimulatedCorrespondences, FloorPointsLandOnTheirProjectorPixels)
 {
   const sim::Scene scene = sim::demoScene(GetParam());
-  const sim::Camera camera(scene);
+  const sim::Camera& camera = sim::demoCamera(GetParam());
   const RigidTransform pose = sim::transformOf(scene.camera_pose);
   const Measured fitted = runScene(scene, camera, CorrespondenceOptions(), pose);
   // Measured (pinhole / wide angle): coverage 0.29 / 0.37 (the camera is ~4x coarser than the

@@ -43,21 +43,13 @@ struct CalibrationRun
   sim::Scene scene;
 };
 
-/// The simulated camera of the demo scene, traced once per projector lens for all tests.
-const sim::Camera& cameraOf(bool wide_angle)
-{
-  static const sim::Camera pinhole(sim::demoScene(false));
-  static const sim::Camera wide(sim::demoScene(true));
-  return wide_angle ? wide : pinhole;
-}
-
 CalibrationRun calibrate(bool wide_angle, bool fit_distortion = true, double gain = sim::Scene().gain,
                          const LensDistortion& file_distortion = LensDistortion())
 {
   CalibrationRun run;
   const sim::Scene scene = sim::demoScene(wide_angle);
   run.scene = scene;
-  const sim::Camera camera = cameraOf(wide_angle).withLight(scene.ambient, gain);
+  const sim::Camera camera = sim::demoCamera(wide_angle).withLight(scene.ambient, gain);
   const std::vector<PatternFrame> frames = grayCodeFrames(scene.projector.width, scene.projector.height);
   std::vector<cv::Mat> captures;
   for (std::size_t i = 0; i < frames.size(); ++i)
@@ -184,7 +176,7 @@ TEST(StructuredLightCalibration, FramesOfTheWrongPatternCannotBeDecodedAndAreRef
   // Every pattern frame captured while the white frame was still on (captured before its pattern
   // was on screen): white and black are right, no bit has contrast.
   const sim::Scene scene = sim::demoScene(false);
-  const sim::Camera& camera = cameraOf(false);
+  const sim::Camera& camera = sim::demoCamera(false);
   const std::vector<PatternFrame> frames = grayCodeFrames(scene.projector.width, scene.projector.height);
   std::vector<cv::Mat> captures;
   for (std::size_t i = 0; i < frames.size(); ++i)

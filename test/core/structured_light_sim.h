@@ -217,6 +217,16 @@ private:
   Scene scene_;
   std::vector<int> index_;  ///< per sub-sample: projector pixel index, -1 where unlit
 };
+/// The camera of demoScene(wide_angle_projector), traced once per test process and lens (tracing
+/// 640x480 x 16 sub-pixels is the slow part, several seconds under the sanitizers); withLight()
+/// gives it other light.
+inline const Camera& demoCamera(bool wide_angle_projector)
+{
+  static const Camera pinhole(demoScene(false));
+  static const Camera wide(demoScene(true));
+  return wide_angle_projector ? wide : pinhole;
+}
+
 /// The lens as a CameraInfo gives it (K = P, plumb_bob D), in the core's type.
 inline LensCalibration calibrationOf(const Lens& lens)
 {
