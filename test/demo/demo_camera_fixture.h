@@ -156,6 +156,16 @@ public:
     projector_pub_ = nh_.advertise<sensor_msgs::Image>(kProjectorTopic, 10);
     spinner_.start();
   }
+  /// The spinner's threads first: a frame arriving during destruction must not reach frames_.
+  ~Harness()
+  {
+    spinner_.stop();
+    frame_sub_.shutdown();
+    info_sub_.shutdown();
+    log_sub_.shutdown();
+  }
+  Harness(const Harness&) = delete;
+  Harness& operator=(const Harness&) = delete;
 
   static bool waitFor(const std::function<bool()>& condition, double timeout)
   {
