@@ -27,12 +27,6 @@ std::string percent(double fraction)
   return fixedDecimals(100.0 * fraction, 1) + " %";
 }
 
-RigidTransform toRigid(const geometry_msgs::Transform& t)
-{
-  return RigidTransform::fromQuaternion(t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w,
-                                        Vec3{t.translation.x, t.translation.y, t.translation.z});
-}
-
 RigidTransform compose(const RigidTransform& a_T_b, const RigidTransform& b_T_c)
 {
   const std::array<double, 9>& r = a_T_b.rotation();
@@ -54,7 +48,7 @@ bool lookup(const tf2_ros::Buffer& tf, const std::string& target, const std::str
 {
   try
   {
-    out = toRigid(tf.lookupTransform(target, frame, ros::Time(0), ros::Duration(timeout)).transform);
+    out = toRigidTransform(tf.lookupTransform(target, frame, ros::Time(0), ros::Duration(timeout)).transform);
     return true;
   }
   catch (const tf2::TransformException& e)
