@@ -64,6 +64,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest_gtest(test_nodes_projector_info_publisher
     test/nodes/projector_info_publisher.test
     test/nodes/projector_info_publisher_test.cpp
+    test/support/child_process.cpp
     ${${PROJECT_NAME}_CALIBRATION_SOURCES}
   )
   target_compile_definitions(test_nodes_projector_info_publisher PRIVATE
@@ -93,7 +94,7 @@ if(CATKIN_ENABLE_TESTING)
 
   # calibrate_projector and projector.launch mount_file:= (issue 12). The expected values come from
   # test/nodes/mount_oracle.cpp: image_geometry on the raw CameraInfo and a rotation built by hand.
-  set(${PROJECT_NAME}_CALIBRATION_TEST_SOURCES test/nodes/child_process.cpp test/nodes/mount_oracle.cpp)
+  set(${PROJECT_NAME}_CALIBRATION_TEST_SOURCES test/support/child_process.cpp test/nodes/mount_oracle.cpp)
   set(${PROJECT_NAME}_CALIBRATION_TEST_DEFINITIONS
     CALIBRATE_PROJECTOR_BINARY="$<TARGET_FILE:calibrate_projector>"
     MOUNT_TF_PUBLISHER_BINARY="$<TARGET_FILE:mount_tf_publisher>"

@@ -30,11 +30,11 @@
 #include <ros/ros.h>
 
 #include <array>
-#include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include <sys/wait.h>
+#include "../support/child_process.h"
 
 namespace
 {
@@ -337,31 +337,13 @@ TEST(DemoCamera, MalformedProjectorImagesAreRefusedAndFramesGoOn)
   EXPECT_EQ(harness->badFrames(), 0);
 }
 
-struct RunResult
+/// Runs the node binary as `name` (its parameters set beforehand; no shell), at most 20 s; its exit
+/// status and its stdout and stderr together.
+std::pair<int, std::string> runNode(const std::string& name)
 {
-  int exit_status = -1;
-  std::string output;
-};
-
-/// Runs the node binary as `name` (its parameters set beforehand), at most 20 s.
-RunResult runNode(const std::string& name)
-{
-  const std::string command =
-      std::string("timeout 20 '") + DEMO_CAMERA_BINARY + "' __name:=" + name + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr)
-  {
-    return result;
-  }
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-  {
-    result.output += buffer.data();
-  }
-  const int status = pclose(pipe);
-  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  const rviz_projector_test::RunResult result =
+      rviz_projector_test::run({DEMO_CAMERA_BINARY, "__name:=" + name}, 20.0);
+  return {result.status, result.out + result.err};
 }
 
 TEST(DemoCamera, NonsenseParametersStopTheNodeWithAReason)
@@ -371,19 +353,19 @@ TEST(DemoCamera, NonsenseParametersStopTheNodeWithAReason)
   ros::param::set("/demo_camera_range/exposure_delay", -1.0);
   ros::param::set("/demo_camera_range/supersampling", 9);
   ros::param::set("/demo_camera_range/projector_fx", -5.0);
-  const RunResult range = runNode("demo_camera_range");
-  EXPECT_EQ(range.exit_status, 1) << range.output;
+  const auto range = runNode("demo_camera_range");
+  EXPECT_EQ(range.first, 1) << range.second;
   for (const char* text : {"ambient must be in [0, 1]", "camera D must have 0, 4, 5", "~exposure_delay must be",
                            "supersampling must be 1..4", "projector fx and fy must be finite and positive"})
   {
-    EXPECT_NE(range.output.find(text), std::string::npos) << text << " in: " << range.output;
+    EXPECT_NE(range.second.find(text), std::string::npos) << text << " in: " << range.second;
   }
   ros::param::set("/demo_camera_type/fx", std::string("wide"));
   ros::param::set("/demo_camera_type/projector_D", std::string("none"));
-  const RunResult type = runNode("demo_camera_type");
-  EXPECT_EQ(type.exit_status, 1) << type.output;
-  EXPECT_NE(type.output.find("~fx has the wrong type"), std::string::npos) << type.output;
-  EXPECT_NE(type.output.find("~projector_D has the wrong type"), std::string::npos) << type.output;
+  const auto type = runNode("demo_camera_type");
+  EXPECT_EQ(type.first, 1) << type.second;
+  EXPECT_NE(type.second.find("~fx has the wrong type"), std::string::npos) << type.second;
+  EXPECT_NE(type.second.find("~projector_D has the wrong type"), std::string::npos) << type.second;
 }
 }  // namespace
 

@@ -15,7 +15,7 @@
 #include <iomanip>
 #include <vector>
 
-#include "child_process.h"
+#include "../support/child_process.h"
 #include "mount_oracle.h"
 
 namespace

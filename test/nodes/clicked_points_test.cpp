@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "child_process.h"
+#include "../support/child_process.h"
 #include "mount_oracle.h"
 
 namespace

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "child_process.h"
+#include "../support/child_process.h"
 #include "mount_oracle.h"
 #include "rviz_projector/core/projector_mount.h"
 

@@ -12,49 +12,35 @@
 #include <ros/topic.h>
 #include <sensor_msgs/CameraInfo.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "../support/child_process.h"
 #include "rviz_projector/calibration/calibration_file.h"
 
 namespace
 {
-struct RunResult
+/// The node's exit status and its stdout and stderr together.
+struct NodeRun
 {
   int exit_status = -1;
   std::string output;
 };
 
-/// Runs the node binary with `arguments` (stdout and stderr together), at most 20 s.
-RunResult runNode(const std::string& arguments)
+/// Runs the node binary with `arguments` (no shell), at most 20 s.
+NodeRun runNode(const std::vector<std::string>& arguments)
 {
   static int run = 0;
-  const std::string command = std::string("timeout 20 '") + PROJECTOR_INFO_PUBLISHER_BINARY +
-                              "' __name:=projector_info_publisher_run_" + std::to_string(run++) + " " + arguments +
-                              " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr)
-  {
-    return result;
-  }
-  std::array<char, 512> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-  {
-    result.output += buffer.data();
-  }
-  const int status = pclose(pipe);
-  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  std::vector<std::string> argv{PROJECTOR_INFO_PUBLISHER_BINARY,
+                                "__name:=projector_info_publisher_run_" + std::to_string(run++)};
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  const rviz_projector_test::RunResult result = rviz_projector_test::run(argv, 20.0);
+  return {result.status, result.out + result.err};
 }
 
-RunResult runNodeOnFile(const std::string& file)
+NodeRun runNodeOnFile(const std::string& file)
 {
-  return runNode("_calibration_file:='" + file + "'");
+  return runNode({"_calibration_file:=" + file});
 }
 
 std::string testFile(const std::string& name)
@@ -71,7 +57,7 @@ void expectArray(const std::vector<double>& expected, const double* actual, cons
 }
 
 /// The node must fail with status 1 and a fatal message holding every one of `expected`.
-void expectFailure(const RunResult& result, const std::vector<std::string>& expected)
+void expectFailure(const NodeRun& result, const std::vector<std::string>& expected)
 {
   EXPECT_EQ(1, result.exit_status) << result.output;
   EXPECT_NE(std::string::npos, result.output.find("projector_info_publisher: ")) << result.output;
@@ -142,7 +128,7 @@ TEST(ProjectorInfoPublisher, RelativeMissingFileExplainsTheWorkingDirectory)
 
 TEST(ProjectorInfoPublisher, ParameterNotSet)
 {
-  expectFailure(runNode(""), {"calibration_file is not set"});
+  expectFailure(runNode({}), {"calibration_file is not set"});
 }
 
 TEST(ProjectorInfoPublisher, UnknownPackage)
