@@ -27,21 +27,6 @@ std::string percent(double fraction)
   return fixedDecimals(100.0 * fraction, 1) + " %";
 }
 
-RigidTransform compose(const RigidTransform& a_T_b, const RigidTransform& b_T_c)
-{
-  const std::array<double, 9>& r = a_T_b.rotation();
-  const std::array<double, 9>& s = b_T_c.rotation();
-  std::array<double, 9> m{};
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      m[3 * i + j] = r[3 * i] * s[j] + r[3 * i + 1] * s[3 + j] + r[3 * i + 2] * s[6 + j];
-    }
-  }
-  return RigidTransform::fromMatrix(m, a_T_b.apply(b_T_c.translation()));
-}
-
 /// `frame`'s pose in `target` (latest), or "" with the error in `error`.
 bool lookup(const tf2_ros::Buffer& tf, const std::string& target, const std::string& frame, double timeout,
             RigidTransform& out, std::string& error)
@@ -186,7 +171,7 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   if (lookup(tf, floor_frame, options.projector_frame, 1.0, floor_T_projector, tf_error))
   {
     prior = mountOfOpticalPose(floor_T_projector);
-    prior_base = mountOfOpticalPose(compose(base_T_floor, floor_T_projector));
+    prior_base = mountOfOpticalPose(base_T_floor * floor_T_projector);
     input.prior = &prior;
   }
   else
@@ -219,7 +204,7 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   {
     return reportError(err, result.error + " (nothing written)");
   }
-  const RigidTransform base_T_optical = compose(base_T_floor, result.solution.parent_T_optical);
+  const RigidTransform base_T_optical = base_T_floor * result.solution.parent_T_optical;
   MountSolution mount;
   mount.ok = true;
   mount.mount = mountOfOpticalPose(base_T_optical);

@@ -30,6 +30,28 @@ Vec3 RigidTransform::apply(const Vec3& p) const
 {
   return rotate(p) + t_;
 }
+
+RigidTransform RigidTransform::operator*(const RigidTransform& b_T_c) const
+{
+  RigidTransform a_T_c;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a_T_c.r_[3 * i + j] = r_[3 * i] * b_T_c.r_[j] + r_[3 * i + 1] * b_T_c.r_[3 + j] + r_[3 * i + 2] * b_T_c.r_[6 + j];
+    }
+  }
+  a_T_c.t_ = apply(b_T_c.t_);
+  return a_T_c;
+}
+
+RigidTransform RigidTransform::inverse() const
+{
+  RigidTransform b_T_a;
+  b_T_a.r_ = {r_[0], r_[3], r_[6], r_[1], r_[4], r_[7], r_[2], r_[5], r_[8]};
+  b_T_a.t_ = b_T_a.rotate(t_) * -1.0;
+  return b_T_a;
+}
 }  // namespace rviz_projector
 
 namespace rviz_projector

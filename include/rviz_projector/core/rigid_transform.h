@@ -23,6 +23,10 @@ public:
   Vec3 apply(const Vec3& p) const;
   /// Rotates a direction (no translation).
   Vec3 rotate(const Vec3& d) const;
+  /// This transform after `b_T_c`: with this = a_T_b, the result is a_T_c (apply b_T_c first).
+  RigidTransform operator*(const RigidTransform& b_T_c) const;
+  /// b_T_a for this = a_T_b (the rotation transposed).
+  RigidTransform inverse() const;
   const Vec3& translation() const { return t_; }
   /// Row-major rotation matrix.
   const std::array<double, 9>& rotation() const { return r_; }
