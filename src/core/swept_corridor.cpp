@@ -1,0 +1,508 @@
+#include "rviz_projector/core/swept_corridor.h"
+
+#include <clipper.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "rviz_projector/core/path_location.h"
+
+namespace rviz_projector
+{
+namespace
+{
+// Clipper works on integers: 10 micrometres, relative to the corridor's first position (so map
+// coordinates far from the origin lose nothing).
+constexpr double kScale = 1e5;
+// Vertices of the union closer than this (0.5 mm) are merged, near-collinear ones dropped.
+constexpr double kCleanDistance = 0.0005 * kScale;
+
+double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+
+bool segmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
+{
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+}
+
+double signedArea(const std::vector<Vec2>& polygon)
+{
+  double twice = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  }
+  return 0.5 * twice;
+}
+
+/// Ear clipping of a simple polygon (counter-clockwise) into triangles; a footprint has few vertices.
+std::vector<Vec2> triangulate(std::vector<Vec2> polygon)
+{
+  std::vector<Vec2> triangles;
+  auto inside = [](const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+    return cross(b - a, p - a) > 0 && cross(c - b, p - b) > 0 && cross(a - c, p - c) > 0;
+  };
+  while (polygon.size() > 3)
+  {
+    bool clipped = false;
+    for (std::size_t i = 0; i < polygon.size() && !clipped; ++i)
+    {
+      const Vec2& a = polygon[(i + polygon.size() - 1) % polygon.size()];
+      const Vec2& b = polygon[i];
+      const Vec2& c = polygon[(i + 1) % polygon.size()];
+      if (cross(b - a, c - b) <= 0)
+      {
+        continue;  // reflex or flat: not an ear
+      }
+      const bool empty = std::none_of(polygon.begin(), polygon.end(), [&](const Vec2& p) { return inside(p, a, b, c); });
+      if (empty)
+      {
+        triangles.insert(triangles.end(), {a, b, c});
+        polygon.erase(polygon.begin() + std::ptrdiff_t(i));
+        clipped = true;
+      }
+    }
+    if (!clipped)
+    {
+      break;  // numerically degenerate rest: leave it out rather than loop
+    }
+  }
+  if (polygon.size() == 3)
+  {
+    triangles.insert(triangles.end(), polygon.begin(), polygon.end());
+  }
+  return triangles;
+}
+
+using Placement = SweptCorridor::Placement;
+
+Vec2 place(const Placement& at, const Vec2& v)
+{
+  return at.position + at.forward * v.x + perpendicular(at.forward) * v.y;
+}
+
+ClipperLib::IntPoint toClipper(const Vec2& v)
+{
+  return {ClipperLib::cInt(std::llround(v.x * kScale)), ClipperLib::cInt(std::llround(v.y * kScale))};
+}
+
+Vec2 fromClipper(const ClipperLib::IntPoint& p, const Vec2& origin)
+{
+  return {origin.x + double(p.X) / kScale, origin.y + double(p.Y) / kScale};
+}
+
+/// Triangles of width `width` centred on the polyline (miter joins, limited to twice the half width).
+void thickLine(const std::vector<Vec2>& line, bool closed, double width, std::vector<Vec2>& out)
+{
+  const std::size_t n = line.size();
+  if (n < 2)
+  {
+    return;
+  }
+  auto normal = [&](std::size_t i) {  // left normal of segment i -> i + 1
+    const Vec2 d = line[(i + 1) % n] - line[i];
+    const double length = norm(d);
+    return length > 0 ? perpendicular(d) * (1.0 / length) : Vec2{};
+  };
+  const double half = 0.5 * width;
+  std::vector<Vec2> offset(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
+    const Vec2 before = has_before ? normal((i + n - 1) % n) : normal(i);
+    const Vec2 after = has_after ? normal(i) : before;
+    Vec2 miter = before + after;
+    const double length = norm(miter);
+    miter = length > 1e-9 ? miter * (1.0 / length) : after;
+    const double cosine = std::max(dot(miter, after), 0.5);
+    offset[i] = miter * (half / cosine);
+  }
+  const std::size_t segments = closed ? n : n - 1;
+  for (std::size_t i = 0; i < segments; ++i)
+  {
+    const std::size_t j = (i + 1) % n;
+    const Vec2 a = line[i] + offset[i], b = line[i] - offset[i], c = line[j] + offset[j], d = line[j] - offset[j];
+    out.insert(out.end(), {a, b, d, a, d, c});
+  }
+}
+
+/// The footprint vertex farthest to one side (`side` +1: left, -1: right); ties (1 mm) go to the
+/// rearmost (`rear`) or the foremost vertex.
+Vec2 sideVertex(const std::vector<Vec2>& footprint, double side, bool rear)
+{
+  double extreme = -INFINITY;
+  for (const Vec2& v : footprint) extreme = std::max(extreme, side * v.y);
+  Vec2 best{NAN, NAN};
+  for (const Vec2& v : footprint)
+  {
+    if (side * v.y >= extreme - 1e-3 && (std::isnan(best.x) || (rear ? v.x < best.x : v.x > best.x)))
+    {
+      best = v;
+    }
+  }
+  return best;
+}
+
+std::size_t nearestIndex(const std::vector<Vec2>& ring, const Vec2& p)
+{
+  std::size_t best = 0;
+  double best_distance = INFINITY;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+  {
+    const double d = distance(ring[i], p);
+    if (d < best_distance)
+    {
+      best_distance = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+/// Clipper's paths back in metres (the corridor's origin added), cleaned first.
+std::vector<std::vector<Vec2>> fromClipper(ClipperLib::Paths paths, const Vec2& origin)
+{
+  ClipperLib::CleanPolygons(paths, kCleanDistance);
+  std::vector<std::vector<Vec2>> rims;
+  for (const ClipperLib::Path& path : paths)
+  {
+    rims.emplace_back();
+    for (const ClipperLib::IntPoint& p : path)
+    {
+      rims.back().push_back(fromClipper(p, origin));
+    }
+  }
+  return rims;
+}
+}  // namespace
+
+std::string footprintProblem(const std::vector<Vec2>& footprint)
+{
+  if (footprint.size() < 3)
+  {
+    return "the footprint has " + std::to_string(footprint.size()) + " points (at least 3 are needed)";
+  }
+  for (const Vec2& v : footprint)
+  {
+    if (!isFinite(v))
+    {
+      return "the footprint has a point that is not a finite number";
+    }
+  }
+  if (std::abs(signedArea(footprint)) < 1e-6)
+  {
+    return "the footprint has no area";
+  }
+  const std::size_t n = footprint.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (std::size_t j = i + 2; j < n; ++j)
+    {
+      if ((j + 1) % n != i && segmentsCross(footprint[i], footprint[(i + 1) % n], footprint[j], footprint[(j + 1) % n]))
+      {
+        return "the footprint's edges cross (edges " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + ")";
+      }
+    }
+  }
+  return "";
+}
+
+namespace
+{
+/// The positions the footprint is placed at: every `step` metres of path from `from` to `to`, more
+/// where the heading turns faster than `turn_step`; relative to `origin`.
+std::vector<Placement> placementsAlong(const std::vector<Vec2>& points, const std::vector<double>& lengths, double from,
+                                       double to, const Vec2& origin, const CorridorParameters& parameters)
+{
+  std::vector<Placement> placements;
+  // The heading at s is that of a chord centred on s (headingAt's chord starts at s).
+  auto headingOf = [&](double s) {
+    return headingAt(points, lengths, std::max(0.0, s - 0.5 * parameters.heading_chord), parameters.heading_chord);
+  };
+  auto placementAt = [&](double s, double heading) {
+    return Placement{pointAtArcLength(points, lengths, s) - origin, {std::cos(heading), std::sin(heading)}};
+  };
+  double previous_s = from;
+  double previous_heading = headingOf(from);
+  if (!std::isfinite(previous_heading))
+  {
+    return placements;
+  }
+  placements.push_back(placementAt(from, previous_heading));
+  const int steps = int(std::ceil((to - from) / parameters.step));
+  for (int i = 1; i <= steps; ++i)
+  {
+    const double s = from + (to - from) * i / steps;
+    const double heading = headingOf(s);
+    const double turn = std::remainder(heading - previous_heading, 2.0 * M_PI);
+    const int parts = std::max(1, int(std::ceil(std::abs(turn) / parameters.turn_step)));
+    for (int k = 1; k <= parts; ++k)
+    {
+      const double f = double(k) / parts;
+      placements.push_back(placementAt(previous_s + (s - previous_s) * f, previous_heading + turn * f));
+    }
+    previous_s = s;
+    previous_heading = heading;
+  }
+  return placements;
+}
+
+/// Pieces of the swept area as counter-clockwise triangles, both for Clipper and for the band.
+class Pieces
+{
+public:
+  Pieces(const Vec2& origin, std::vector<Vec2>& band) : origin_(origin), band_(band) {}
+
+  /// A triangle, to the band and to the union.
+  void add(const Vec2& a, const Vec2& b, const Vec2& c)  // corridor coordinates
+  {
+    if (addToBand(a, b, c))
+    {
+      addToUnion({a, b, c});
+    }
+  }
+
+  /// A simple polygon to the union only (its triangles go to the band separately).
+  void addToUnion(const std::vector<Vec2>& polygon)
+  {
+    ClipperLib::Path piece;
+    for (const Vec2& v : polygon)
+    {
+      piece.push_back(toClipper(v));
+    }
+    if (!ClipperLib::Orientation(piece))
+    {
+      std::reverse(piece.begin(), piece.end());  // all counter-clockwise: non-zero winding adds them up
+    }
+    paths_.push_back(std::move(piece));
+  }
+
+  /// A triangle to the band; false when it has no area.
+  bool addToBand(const Vec2& a, const Vec2& b, const Vec2& c)
+  {
+    if (std::abs(cross(b - a, c - a)) < 1e-14)
+    {
+      return false;
+    }
+    band_.insert(band_.end(), {a + origin_, b + origin_, c + origin_});
+    return true;
+  }
+
+  /// The quadrilateral a0 b0 b1 a1 between an edge's two places (one piece of the union; the band
+  /// gets it cut along its inner diagonal), or, where the edge turned across its own earlier place,
+  /// the two triangles either side of the crossing.
+  void addQuad(const Vec2& a0, const Vec2& b0, const Vec2& a1, const Vec2& b1)
+  {
+    if (segmentsCross(a0, b0, a1, b1))
+    {
+      const double t = cross(a1 - a0, b1 - a1) / cross(b0 - a0, b1 - a1);
+      const Vec2 x = a0 + (b0 - a0) * t;
+      add(a0, x, a1);
+      add(b0, x, b1);
+      return;
+    }
+    const bool a0_b1_inside = (cross(b0 - a0, b1 - a0) > 0) == (cross(b1 - a0, a1 - a0) > 0);
+    const bool drawn = a0_b1_inside ? addToBand(a0, b0, b1) | addToBand(a0, b1, a1)
+                                    : addToBand(a0, b0, a1) | addToBand(b0, b1, a1);
+    if (drawn)
+    {
+      addToUnion({a0, b0, b1, a1});
+    }
+  }
+
+  /// The union's rims (outer ones counter-clockwise, holes clockwise) in metres.
+  std::vector<std::vector<Vec2>> rims() const
+  {
+    ClipperLib::Clipper clipper;
+    clipper.AddPaths(paths_, ClipperLib::ptSubject, true);
+    ClipperLib::Paths rims;
+    clipper.Execute(ClipperLib::ctUnion, rims, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    // Pieces that touch along an edge can come out with a hairline gap between them after rounding
+    // (a sliver of the robot's tail swinging out, apart from the rest): closed by growing the rims
+    // by half a millimetre and shrinking them back (mitred: corners stay where they are).
+    for (const double grow : {kCleanDistance, -kCleanDistance})
+    {
+      ClipperLib::ClipperOffset offset(4.0);
+      offset.AddPaths(rims, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+      offset.Execute(rims, grow);
+    }
+    return fromClipper(std::move(rims), origin_);
+  }
+
+private:
+  Vec2 origin_;
+  std::vector<Vec2>& band_;
+  ClipperLib::Paths paths_;
+};
+}  // namespace
+
+void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
+                          const std::vector<Vec2>& footprint_in, const CorridorParameters& parameters)
+{
+  if (!footprintProblem(footprint_in).empty() || !begin(points, lengths, start, parameters))
+  {
+    return;
+  }
+  std::vector<Vec2> footprint = footprint_in;
+  if (signedArea(footprint) < 0)
+  {
+    std::reverse(footprint.begin(), footprint.end());
+  }
+  // The footprint where it starts and where it ends, and what each of its edges sweeps between two
+  // neighbouring positions: a point the footprint covers at some moment was inside it at the start,
+  // or a leading edge crossed it on the way there. Small steps keep the chords of the corners' arcs short
+  // (5 degrees at 2.5 m from the centre of the turn: a sagitta of 0.2 mm).
+  Pieces pieces(origin_, band_);
+  const std::vector<Vec2> triangles = triangulate(footprint);
+  for (const Placement* at : {&placements_.front(), &placements_.back()})
+  {
+    std::vector<Vec2> placed;
+    for (const Vec2& v : footprint)
+    {
+      placed.push_back(place(*at, v));
+    }
+    pieces.addToUnion(placed);
+    for (std::size_t i = 0; i + 2 < triangles.size(); i += 3)
+    {
+      pieces.addToBand(place(*at, triangles[i]), place(*at, triangles[i + 1]), place(*at, triangles[i + 2]));
+    }
+  }
+  for (std::size_t i = 0; i + 1 < placements_.size(); ++i)
+  {
+    for (std::size_t e = 0; e < footprint.size(); ++e)
+    {
+      const Vec2& a = footprint[e];
+      const Vec2& b = footprint[(e + 1) % footprint.size()];
+      const Vec2 a0 = place(placements_[i], a), b0 = place(placements_[i], b);
+      const Vec2 a1 = place(placements_[i + 1], a), b1 = place(placements_[i + 1], b);
+      // An edge that moves inwards all along (its outward normal against both ends' motion; the
+      // motion of a rigid step is linear along the edge) only passes over what was already covered.
+      const Vec2 outward{b0.y - a0.y, a0.x - b0.x};
+      if (dot(a1 - a0, outward) <= 0.0 && dot(b1 - b0, outward) <= 0.0)
+      {
+        continue;
+      }
+      pieces.addQuad(a0, b0, a1, b1);
+    }
+  }
+  finish(pieces.rims(), {sideVertex(footprint, 1, true), sideVertex(footprint, -1, true), sideVertex(footprint, 1, false),
+                         sideVertex(footprint, -1, false)},
+         parameters);
+}
+
+void SweptCorridor::buildRound(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
+                               double radius, const CorridorParameters& parameters)
+{
+  if (!(radius > 0.0) || !std::isfinite(radius) || !begin(points, lengths, start, parameters))
+  {
+    return;
+  }
+  // A disc turns into itself: its sweep is the path's points grown by the radius (Clipper's offset,
+  // round ends, arcs within 0.1 mm). The band: the diameter across the path between neighbouring
+  // positions, and the disc at both ends.
+  Pieces pieces(origin_, band_);
+  ClipperLib::Path centre_line;
+  for (const Placement& at : placements_)
+  {
+    centre_line.push_back(toClipper(at.position));
+  }
+  for (std::size_t i = 0; i + 1 < placements_.size(); ++i)
+  {
+    pieces.addQuad(place(placements_[i], {0, radius}), place(placements_[i], {0, -radius}),
+                   place(placements_[i + 1], {0, radius}), place(placements_[i + 1], {0, -radius}));
+  }
+  const int segments = 48;
+  const double outer = radius / std::cos(M_PI / segments);  // its edges touch the circle
+  for (const Placement* at : {&placements_.front(), &placements_.back()})
+  {
+    for (int k = 0; k < segments; ++k)
+    {
+      const double a0 = 2.0 * M_PI * k / segments, a1 = 2.0 * M_PI * (k + 1) / segments;
+      pieces.add(at->position, at->position + Vec2{std::cos(a0), std::sin(a0)} * outer,
+                 at->position + Vec2{std::cos(a1), std::sin(a1)} * outer);
+    }
+  }
+  ClipperLib::ClipperOffset offset(2.0, 1e-4 * kScale);
+  offset.AddPath(centre_line, ClipperLib::jtRound, ClipperLib::etOpenRound);
+  ClipperLib::Paths rims;
+  offset.Execute(rims, radius * kScale);
+  finish(fromClipper(std::move(rims), origin_), {Vec2{0, radius}, Vec2{0, -radius}, Vec2{0, radius}, Vec2{0, -radius}},
+         parameters);
+}
+
+bool SweptCorridor::begin(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
+                          const CorridorParameters& parameters)
+{
+  band_.clear();
+  edge_lines_.clear();
+  edge_triangles_.clear();
+  placements_.clear();
+  if (points.size() < 2 || lengths.size() != points.size() || !std::isfinite(start) || !(parameters.length > 0.0) ||
+      !(parameters.step > 0.0) || !(parameters.turn_step > 0.0) || !(parameters.heading_chord >= 0.0))
+  {
+    return false;
+  }
+  const double from = std::clamp(start, 0.0, lengths.back());
+  const double to = std::min(from + parameters.length, lengths.back());
+  if (!(to - from > 1e-6))
+  {
+    return false;  // at the destination: nothing left to sweep
+  }
+  origin_ = pointAtArcLength(points, lengths, from);
+  placements_ = placementsAlong(points, lengths, from, to, origin_, parameters);
+  return placements_.size() >= 2;
+}
+
+void SweptCorridor::finish(const std::vector<std::vector<Vec2>>& rims, const std::array<Vec2, 4>& sides,
+                           const CorridorParameters& parameters)
+{
+  // The caps behind the robot and beyond the far end are cut off an outer rim where the footprint's
+  // outermost points (sides: start left, start right, end left, end right) are, if they come in that
+  // order counter-clockwise; holes (a path that loops) and rims without that order are kept whole.
+  const Vec2 start_left = place(placements_.front(), sides[0]) + origin_;
+  const Vec2 start_right = place(placements_.front(), sides[1]) + origin_;
+  const Vec2 end_left = place(placements_.back(), sides[2]) + origin_;
+  const Vec2 end_right = place(placements_.back(), sides[3]) + origin_;
+  auto toLine = [&](const std::vector<Vec2>& ring, std::size_t first, std::size_t last) {
+    std::vector<Vec2> line;
+    for (std::size_t i = first;; i = (i + 1) % ring.size())
+    {
+      line.push_back(ring[i]);
+      if (i == last) break;
+    }
+    return line;
+  };
+  for (const std::vector<Vec2>& ring : rims)
+  {
+    // Slivers between the chords of the corners' arcs can leave specks unswept: holes under 1 cm^2
+    // are not drawn (a path that loops leaves far larger ones).
+    if (ring.size() < 3 || std::abs(signedArea(ring)) < 1e-4)
+    {
+      continue;
+    }
+    if (signedArea(ring) > 0)
+    {
+      const std::size_t n = ring.size();
+      const std::size_t sr = nearestIndex(ring, start_right), er = nearestIndex(ring, end_right);
+      const std::size_t el = nearestIndex(ring, end_left), sl = nearestIndex(ring, start_left);
+      auto along = [&](std::size_t i) { return (i + n - sr) % n; };  // steps from start_right, counter-clockwise
+      if (along(er) > 0 && along(er) < along(el) && along(el) < along(sl))
+      {
+        edge_lines_.push_back(toLine(ring, sr, er));
+        std::vector<Vec2> left = toLine(ring, el, sl);
+        std::reverse(left.begin(), left.end());
+        edge_lines_.push_back(std::move(left));
+        continue;
+      }
+    }
+    std::vector<Vec2> whole = ring;
+    whole.push_back(whole.front());
+    edge_lines_.push_back(std::move(whole));
+  }
+  for (const std::vector<Vec2>& line : edge_lines_)
+  {
+    thickLine(line, false, parameters.edge_width, edge_triangles_);
+  }
+}
+}  // namespace rviz_projector

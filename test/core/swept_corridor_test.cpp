@@ -1,0 +1,281 @@
+// The swept corridor (issue 25) against envelopes computed by hand: a rectangle driving straight,
+// a circle and a rectangle driving round an arc (the rectangle's outer rim is traced by its front
+// corner, sqrt(front^2 + (R + half width)^2) from the centre, its inner rim by the middle of its
+// inner side, R - half width: not a fixed offset of the centre line), a non-convex footprint whose
+// notch stays unswept, the clip at the destination, and the footprints that are refused.
+#include "rviz_projector/core/swept_corridor.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "rviz_projector/core/path_location.h"
+
+namespace rviz_projector
+{
+namespace
+{
+// A rectangular robot: 0.4 m ahead of its centre, 0.2 m behind, 0.3 m to each side.
+const std::vector<Vec2> kRectangle{{0.4, 0.3}, {-0.2, 0.3}, {-0.2, -0.3}, {0.4, -0.3}};
+
+struct Path
+{
+  std::vector<Vec2> points;
+  std::vector<double> lengths;
+};
+
+Path straightPath(double length)
+{
+  Path path;
+  for (int i = 0; i <= 100; ++i)
+  {
+    path.points.push_back({length * i / 100.0, 0.0});
+  }
+  accumulateArcLengths(path.points, path.lengths);
+  return path;
+}
+
+/// Counter-clockwise (turning left) round the circle of `radius` about (0, radius), from the origin.
+Path arcPath(double radius, double angle)
+{
+  Path path;
+  const int n = int(std::ceil(radius * angle / 0.01));
+  for (int i = 0; i <= n; ++i)
+  {
+    const double a = angle * i / n;
+    path.points.push_back({radius * std::sin(a), radius - radius * std::cos(a)});
+  }
+  accumulateArcLengths(path.points, path.lengths);
+  return path;
+}
+
+bool inTriangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c)
+{
+  auto side = [](const Vec2& o, const Vec2& u, const Vec2& v) { return (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x); };
+  const double d1 = side(a, b, p), d2 = side(b, c, p), d3 = side(c, a, p);
+  return (d1 >= 0 && d2 >= 0 && d3 >= 0) || (d1 <= 0 && d2 <= 0 && d3 <= 0);
+}
+
+bool covered(const std::vector<Vec2>& triangles, const Vec2& p)
+{
+  for (std::size_t i = 0; i + 2 < triangles.size(); i += 3)
+  {
+    if (inTriangle(p, triangles[i], triangles[i + 1], triangles[i + 2]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+TEST(SweptCorridor, StraightRectangleSweepsARectangle)
+{
+  const Path path = straightPath(5.0);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 2.0;
+  corridor.build(path.points, path.lengths, 1.0, kRectangle, parameters);
+  // By hand: the robot's centre goes from x = 1 to x = 3; its body covers x in [0.8, 3.4], |y| <= 0.3.
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    ASSERT_GE(line.size(), 2u);
+    double low = INFINITY, high = -INFINITY;
+    for (const Vec2& p : line)
+    {
+      EXPECT_NEAR(0.3, std::abs(p.y), 1e-4) << p.x << ", " << p.y;
+      EXPECT_NEAR(line.front().y, p.y, 1e-4) << "an edge stays on its side";
+      low = std::min(low, p.x);
+      high = std::max(high, p.x);
+    }
+    EXPECT_NEAR(0.8, low, 1e-4);
+    EXPECT_NEAR(3.4, high, 1e-4);
+    EXPECT_LT(line.front().x, line.back().x) << "edges run in the direction of travel";
+  }
+  EXPECT_GT(corridor.edgeLines()[0].front().y * corridor.edgeLines()[1].front().y, -1.0);
+  EXPECT_LT(corridor.edgeLines()[0].front().y * corridor.edgeLines()[1].front().y, 0.0) << "one edge each side";
+  for (const Vec2& p : {Vec2{0.81, 0.29}, Vec2{2.0, 0.0}, Vec2{3.39, -0.29}})
+  {
+    EXPECT_TRUE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+  for (const Vec2& p : {Vec2{0.79, 0.0}, Vec2{2.0, 0.31}, Vec2{3.41, 0.0}})
+  {
+    EXPECT_FALSE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+  // Edge lines of 3 cm: every triangle vertex within 1.5 cm of the rim.
+  for (const Vec2& v : corridor.edges())
+  {
+    EXPECT_NEAR(0.3, std::abs(v.y), 0.015 + 1e-4);
+  }
+}
+
+TEST(SweptCorridor, CircleRoundAnArcSweepsTwoConcentricArcs)
+{
+  const double radius = 2.0, robot = 0.25;
+  const Path path = arcPath(radius, 1.5);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 2.0;
+  corridor.buildRound(path.points, path.lengths, 0.5, robot, parameters);
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  const Vec2 centre{0.0, radius};
+  int inner = 0, outer = 0;
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    // Each line's two ends are where the round caps were cut off: judged by the points between.
+    for (std::size_t i = 1; i + 1 < line.size(); ++i)
+    {
+      const Vec2& p = line[i];
+      const double r = distance(p, centre);
+      // Clipper's round offset: arcs within 0.1 mm; cleaning merges points 0.5 mm apart.
+      if (r < radius)
+      {
+        EXPECT_NEAR(radius - robot, r, 0.6e-3);
+        ++inner;
+      }
+      else
+      {
+        EXPECT_NEAR(radius + robot, r, 0.6e-3);
+        ++outer;
+      }
+    }
+  }
+  EXPECT_GT(inner, 10);
+  EXPECT_GT(outer, 10);
+  // The band: the robot's centre is at path angle 0.25 .. 1.25 rad; at 0.75 rad the band spans
+  // radii 1.75 .. 2.25.
+  for (const double r : {1.76, 2.0, 2.24})
+  {
+    EXPECT_TRUE(covered(corridor.band(), centre + Vec2{r * std::sin(0.75), -r * std::cos(0.75)})) << r;
+  }
+  for (const double r : {1.74, 2.26})
+  {
+    EXPECT_FALSE(covered(corridor.band(), centre + Vec2{r * std::sin(0.75), -r * std::cos(0.75)})) << r;
+  }
+}
+
+TEST(SweptCorridor, RectangleRoundAnArcIsNotAFixedOffset)
+{
+  const double radius = 2.0;
+  const Path path = arcPath(radius, 1.5);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 2.0;
+  const double start = 0.5;
+  corridor.build(path.points, path.lengths, start, kRectangle, parameters);
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  const Vec2 centre{0.0, radius};
+  // By hand, turning left round the centre: the outer (right) rim is traced by the front right
+  // corner, sqrt(0.4^2 + 2.3^2) = 2.33452 m from the centre; the inner (left) rim by the middle of
+  // the left side, 2 - 0.3 = 1.7 m. Judged where the robot is well inside the arc (angles of the
+  // robot's centre from 0.5 + 0.3 to 2.5 - 0.3 m of path).
+  const double outer = std::sqrt(0.4 * 0.4 + 2.3 * 2.3);
+  int judged = 0;
+  double widest = 0.0;
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    for (const Vec2& p : line)
+    {
+      const double angle = std::atan2(p.x - centre.x, centre.y - p.y);  // 0 at the origin, growing along the path
+      const double r = distance(p, centre);
+      widest = std::max(widest, r);
+      if (angle < (start + 0.45) / radius || angle > (start + 2.0 - 0.05) / radius)
+      {
+        continue;
+      }
+      ++judged;
+      EXPECT_NEAR(r < radius ? 1.7 : outer, r, 1e-3) << "at " << angle << " rad";
+    }
+  }
+  EXPECT_GT(judged, 10);
+  EXPECT_NEAR(outer, widest, 1e-3);
+}
+
+TEST(SweptCorridor, NonConvexFootprintLeavesItsNotchUnswept)
+{
+  // An L: the rear left quarter is cut away (x < 0 and y > 0.1).
+  const std::vector<Vec2> l_shape{{0.4, 0.3}, {0.0, 0.3}, {0.0, 0.1}, {-0.2, 0.1}, {-0.2, -0.3}, {0.4, -0.3}};
+  ASSERT_EQ("", footprintProblem(l_shape));
+  const Path path = straightPath(5.0);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 1.0;
+  corridor.build(path.points, path.lengths, 1.0, l_shape, parameters);
+  // The robot starts at x = 1: behind it, left of y = 0.1, nothing ever passes.
+  EXPECT_FALSE(covered(corridor.band(), {0.9, 0.2}));
+  EXPECT_TRUE(covered(corridor.band(), {0.9, 0.0}));
+  EXPECT_TRUE(covered(corridor.band(), {1.5, 0.2}));
+  EXPECT_TRUE(covered(corridor.band(), {2.39, 0.29}));
+  EXPECT_FALSE(covered(corridor.band(), {2.41, 0.0}));
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    for (const Vec2& p : line)
+    {
+      EXPECT_NEAR(0.3, std::abs(p.y), 1e-4) << p.x << ", " << p.y;
+    }
+  }
+}
+
+TEST(SweptCorridor, ClippedAtTheDestination)
+{
+  const Path path = straightPath(2.0);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 3.0;
+  corridor.build(path.points, path.lengths, 1.5, kRectangle, parameters);
+  double farthest = -INFINITY;
+  for (const Vec2& p : corridor.band())
+  {
+    farthest = std::max(farthest, p.x);
+  }
+  EXPECT_NEAR(2.4, farthest, 1e-4) << "the robot's front at the destination (x = 2), no further";
+  corridor.build(path.points, path.lengths, 2.0, kRectangle, parameters);
+  EXPECT_TRUE(corridor.band().empty()) << "standing at the destination: nothing left to sweep";
+  EXPECT_TRUE(corridor.edges().empty());
+}
+
+TEST(SweptCorridor, BadFootprintsAreRefusedWithAReason)
+{
+  EXPECT_NE(std::string::npos, footprintProblem({}).find("0 points"));
+  EXPECT_NE(std::string::npos, footprintProblem({{0, 0}, {1, 0}}).find("2 points"));
+  EXPECT_NE(std::string::npos, footprintProblem({{0, 0}, {1, 0}, {NAN, 1}}).find("finite"));
+  EXPECT_NE(std::string::npos, footprintProblem({{0, 0}, {1, 0}, {2, 0}}).find("no area"));
+  EXPECT_NE(std::string::npos, footprintProblem({{0, 0}, {2, 2}, {2, 0}, {0, 1}}).find("cross"));
+  EXPECT_EQ("", footprintProblem(kRectangle));
+
+  const Path path = straightPath(5.0);
+  SweptCorridor corridor;
+  corridor.build(path.points, path.lengths, 0.0, {{0, 0}, {2, 2}, {2, 0}, {0, 1}}, CorridorParameters());
+  EXPECT_TRUE(corridor.band().empty());
+  EXPECT_TRUE(corridor.edges().empty());
+  for (const double radius : {0.0, -1.0, double(NAN), double(INFINITY)})
+  {
+    corridor.buildRound(path.points, path.lengths, 0.0, radius, CorridorParameters());
+    EXPECT_TRUE(corridor.band().empty()) << radius;
+  }
+}
+
+TEST(SweptCorridor, ClockwiseFootprintSweepsTheSame)
+{
+  std::vector<Vec2> clockwise = kRectangle;
+  std::reverse(clockwise.begin(), clockwise.end());
+  const Path path = straightPath(5.0);
+  SweptCorridor a, b;
+  a.build(path.points, path.lengths, 1.0, kRectangle, CorridorParameters());
+  b.build(path.points, path.lengths, 1.0, clockwise, CorridorParameters());
+  ASSERT_EQ(a.edgeLines().size(), b.edgeLines().size());
+  for (std::size_t i = 0; i < a.edgeLines().size(); ++i)
+  {
+    ASSERT_EQ(a.edgeLines()[i].size(), b.edgeLines()[i].size());
+    for (std::size_t j = 0; j < a.edgeLines()[i].size(); ++j)
+    {
+      EXPECT_NEAR(a.edgeLines()[i][j].x, b.edgeLines()[i][j].x, 1e-9);
+      EXPECT_NEAR(a.edgeLines()[i][j].y, b.edgeLines()[i][j].y, 1e-9);
+    }
+  }
+}
+}  // namespace
+}  // namespace rviz_projector
