@@ -1,10 +1,11 @@
 // libFuzzer target: the floor shapes a display turns into triangles: ArrowOutline, ArrowSolid,
-// DiscOutline and FloorGrid, with positions and sizes from the fuzz input. Invariants: no crash or
-// UB, the documented vertex counts, finite vertices (and unit normals) for sane finite inputs,
-// an arrow contains its tip, a disc its centre, and a grid stays within kMaxLines lines. Outlines
-// are closed and simple: the arrow's outline is counter-clockwise, its triangles use only its
-// corners and cover exactly its area, and no two non-adjacent edges meet; the disc's rim closes
-// on itself and its chords do not cross (a plain O(n^2) check of every pair of edges).
+// DiscOutline, FloorGrid and SweptCorridor, with positions and sizes from the fuzz input.
+// Invariants: no crash or UB, the documented vertex counts, finite vertices (and unit normals) for
+// sane finite inputs, an arrow contains its tip, a disc its centre, a grid stays within kMaxLines
+// lines, and a refused corridor footprint draws nothing. Outlines are closed and simple: the
+// arrow's outline is counter-clockwise, its triangles use only its corners and cover exactly its
+// area, and no two non-adjacent edges meet; the disc's rim closes on itself and its chords do not
+// cross (a plain O(n^2) check of every pair of edges).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +16,8 @@
 #include "rviz_projector/core/arrow_solid.h"
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/floor_grid.h"
+#include "rviz_projector/core/path_location.h"
+#include "rviz_projector/core/swept_corridor.h"
 
 using namespace rviz_projector;
 using rviz_projector_fuzz::Input;
@@ -256,6 +259,56 @@ void grids(Input& in)
     }
   }
 }
+void corridors(Input& in)
+{
+  // The path as the display hands it over: finite points (PathSpacer's input rules).
+  std::vector<Vec2> points;
+  const int poses = in.integer<int>(0, 40);
+  for (int i = 0; i < poses; ++i)
+  {
+    const Vec2 p = points.empty() || in.boolean() ? in.vec2(20.0) : points.back() + in.vec2(0.3);
+    if (isFinite(p))
+    {
+      points.push_back(p);
+    }
+  }
+  std::vector<double> lengths;
+  accumulateArcLengths(points, lengths);
+  std::vector<Vec2> footprint;
+  const int corners = in.integer<int>(0, 8);
+  for (int i = 0; i < corners; ++i)
+  {
+    footprint.push_back(in.vec2(1.0));
+  }
+  CorridorParameters parameters;
+  parameters.length = in.number(5.0);
+  parameters.edge_width = in.size(0.1);
+  const double start = in.number(10.0);
+  const double radius = in.number(1.0);
+  SweptCorridor corridor;
+  const bool round = in.boolean();
+  if (round)
+  {
+    corridor.buildRound(points, lengths, start, radius, parameters);
+  }
+  else
+  {
+    corridor.build(points, lengths, start, footprint, parameters);
+    if (!footprintProblem(footprint).empty())
+    {
+      RP_FUZZ_CHECK(corridor.band().empty() && corridor.edges().empty() && "a refused footprint drew something");
+    }
+  }
+  RP_FUZZ_CHECK(corridor.band().size() % 3u == 0u);
+  RP_FUZZ_CHECK(corridor.edges().size() % 3u == 0u);
+  bool sane_input = sane(start) && sane(parameters.length) && sane(parameters.edge_width) && sane(radius);
+  for (const Vec2& p : points) sane_input = sane_input && sane(p);
+  if (sane_input)
+  {
+    for (const Vec2& v : corridor.band()) RP_FUZZ_CHECK(isFinite(v));
+    for (const Vec2& v : corridor.edges()) RP_FUZZ_CHECK(isFinite(v));
+  }
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -263,10 +316,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Input in(data, size);
   while (!in.empty())
   {
-    switch (in.integer<int>(0, 2))
+    switch (in.integer<int>(0, 3))
     {
       case 0: arrows(in); break;
       case 1: discs(in); break;
+      case 2: corridors(in); break;
       default: grids(in); break;
     }
   }

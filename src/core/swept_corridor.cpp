@@ -230,13 +230,22 @@ std::vector<Placement> placementsAlong(const std::vector<Vec2>& points, const st
     return placements;
   }
   placements.push_back(placementAt(from, previous_heading));
-  const int steps = int(std::ceil((to - from) / parameters.step));
+  const double steps_wanted = std::ceil((to - from) / parameters.step);
+  if (!(steps_wanted <= 100000.0))
+  {
+    return placements;  // over 100,000 positions: a step or a length that makes no sense
+  }
+  const int steps = int(steps_wanted);
   for (int i = 1; i <= steps; ++i)
   {
     const double s = from + (to - from) * i / steps;
     const double heading = headingOf(s);
+    if (!std::isfinite(heading))
+    {
+      return {};
+    }
     const double turn = std::remainder(heading - previous_heading, 2.0 * M_PI);
-    const int parts = std::max(1, int(std::ceil(std::abs(turn) / parameters.turn_step)));
+    const int parts = int(std::clamp(std::ceil(std::abs(turn) / parameters.turn_step), 1.0, 360.0));
     for (int k = 1; k <= parts; ++k)
     {
       const double f = double(k) / parts;
@@ -303,8 +312,9 @@ public:
       return;
     }
     const bool a0_b1_inside = (cross(b0 - a0, b1 - a0) > 0) == (cross(b1 - a0, a1 - a0) > 0);
-    const bool drawn = a0_b1_inside ? addToBand(a0, b0, b1) | addToBand(a0, b1, a1)
-                                    : addToBand(a0, b0, a1) | addToBand(b0, b1, a1);
+    const bool first = a0_b1_inside ? addToBand(a0, b0, b1) : addToBand(a0, b0, a1);
+    const bool second = a0_b1_inside ? addToBand(a0, b1, a1) : addToBand(b0, b1, a1);  // both, always
+    const bool drawn = first || second;
     if (drawn)
     {
       addToUnion({a0, b0, b1, a1});
@@ -345,6 +355,14 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
     return;
   }
   std::vector<Vec2> footprint = footprint_in;
+  for (const Vec2& v : footprint)
+  {
+    if (!(std::abs(v.x) < 1e3) || !(std::abs(v.y) < 1e3))
+    {
+      placements_.clear();  // a robot a kilometre wide is a typing error
+      return;
+    }
+  }
   if (signedArea(footprint) < 0)
   {
     std::reverse(footprint.begin(), footprint.end());
@@ -394,7 +412,7 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
 void SweptCorridor::buildRound(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
                                double radius, const CorridorParameters& parameters)
 {
-  if (!(radius > 0.0) || !std::isfinite(radius) || !begin(points, lengths, start, parameters))
+  if (!(radius > 0.0) || !(radius < 1e3) || !begin(points, lengths, start, parameters))
   {
     return;
   }
@@ -451,6 +469,15 @@ bool SweptCorridor::begin(const std::vector<Vec2>& points, const std::vector<dou
   }
   origin_ = pointAtArcLength(points, lengths, from);
   placements_ = placementsAlong(points, lengths, from, to, origin_, parameters);
+  // Clipper's integers hold 4.6e13 m at 10 um; a corridor is never near that: anything beyond
+  // 1000 km from its start (or not finite) is refused rather than rounded into nonsense.
+  for (const Placement& at : placements_)
+  {
+    if (!(std::abs(at.position.x) < 1e6) || !(std::abs(at.position.y) < 1e6) || !isFinite(at.forward))
+    {
+      placements_.clear();
+    }
+  }
   return placements_.size() >= 2;
 }
 

@@ -39,7 +39,8 @@ class SweptCorridor
 public:
   /// Sweeps `footprint` (must pass footprintProblem) along the polyline `points` (finite; `lengths`
   /// from accumulateArcLengths) from arc length `start` to start + parameters.length, clipped to the
-  /// path's end. An empty or one-point path, or a bad footprint, gives nothing.
+  /// path's end. An empty or one-point path, a bad footprint, a footprint over 1 km or a corridor
+  /// reaching over 1000 km from its start gives nothing.
   void build(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
              const std::vector<Vec2>& footprint, const CorridorParameters& parameters);
   /// The same for a round robot of `radius` metres (exact: the path grown by the radius).
