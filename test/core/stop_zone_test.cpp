@@ -8,7 +8,9 @@
 #include <limits>
 #include <vector>
 
+#include "rviz_projector/core/cue_drawing.h"
 #include "rviz_projector/core/path_location.h"
+#include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/stop_zone.h"
 
 using namespace rviz_projector;
@@ -290,4 +292,53 @@ TEST(StopZone, FollowsACurvedPath)
       EXPECT_LE(angle, 1.3 / 2.0 + 1e-3);
     }
   }
+}
+
+TEST(StopZone, MitredCornersKeepTheWidth)
+{
+  // An L: 1 m along +x, then 1 m along +y; the zone from arc 0.5 to 1.5 turns the corner. A strip
+  // with mitred joints has exactly the area width x centre-line length; the outer corner vertex lies
+  // at (1 + w/2, -w/2).
+  const std::vector<Vec2> path = {Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}};
+  std::vector<double> lengths;
+  accumulateArcLengths(path, lengths);
+  std::vector<Vec2> band;
+  appendPathBand(path, lengths, 0.5, 1.5, 0.3, band);
+  double sum = 0.0;
+  bool outer_corner = false;
+  for (std::size_t i = 0; i + 2 < band.size(); i += 3)
+  {
+    sum += triangleArea(band[i], band[i + 1], band[i + 2]);
+  }
+  for (const Vec2& v : band)
+  {
+    outer_corner = outer_corner || (std::abs(v.x - 1.15) < 1e-12 && std::abs(v.y + 0.15) < 1e-12);
+  }
+  EXPECT_NEAR(sum, 0.3 * 1.0, 1e-12);
+  EXPECT_TRUE(outer_corner);
+}
+
+TEST(StopZone, CueDrawingDrawsItOnlyWithTheArrowsAndFromTheRobot)
+{
+  const std::vector<Vec2> path = straight(5.0);
+  SpacingParameters parameters;
+  PathSpacer spacer(parameters);
+  PathCueSettings settings;
+  settings.stop_zone = true;
+  PathCueInput input;
+  input.robot_known = true;
+  input.robot = {1.0, 0.2};  // beside the path at x 1: arc 1
+  input.speed = moving(1.0);
+  CueDrawing d;
+  d.build(path, spacer.space(path), parameters, settings, input);
+  ASSERT_TRUE(d.stopZone().shown());
+  EXPECT_NEAR(d.stopZone().start(), 1.0, 1e-12);
+  EXPECT_NEAR(d.stopZone().end(), 2.3, 1e-12);
+  input.goal.arrows = false;  // a failed goal hides the arrows: the path is no promise, no zone either
+  d.build(path, spacer.space(path), parameters, settings, input);
+  EXPECT_FALSE(d.stopZone().shown());
+  input.goal.arrows = true;
+  settings.stop_zone = false;
+  d.build(path, spacer.space(path), parameters, settings, input);
+  EXPECT_FALSE(d.stopZone().shown()) << "off by default";
 }
