@@ -89,6 +89,13 @@ Vec2 leftNormal(const Vec2& a, const Vec2& b)
 void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& lengths, double from, double to,
                     double width, std::vector<Vec2>& out)
 {
+  PathBandScratch scratch;
+  appendPathBand(points, lengths, from, to, width, out, scratch);
+}
+
+void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& lengths, double from, double to,
+                    double width, std::vector<Vec2>& out, PathBandScratch& scratch)
+{
   if (points.size() < 2 || lengths.size() != points.size() || !std::isfinite(from) || !std::isfinite(to) ||
       !(width > 0.0))
   {
@@ -102,11 +109,13 @@ void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& 
     return;
   }
   // The centre line: the strip's ends and the path points between them (repeated points dropped).
-  std::vector<Vec2> centre;
+  std::vector<Vec2>& centre = scratch.centre;
+  centre.clear();
   centre.push_back(pointAtArcLength(points, lengths, from));
-  for (std::size_t i = 0; i < points.size(); ++i)
+  const auto first = std::upper_bound(lengths.begin(), lengths.end(), from);
+  for (std::size_t i = static_cast<std::size_t>(first - lengths.begin()); i < points.size() && lengths[i] < to; ++i)
   {
-    if (lengths[i] > from && lengths[i] < to && distance(points[i], centre.back()) > 1e-9)
+    if (distance(points[i], centre.back()) > 1e-9)
     {
       centre.push_back(points[i]);
     }
@@ -121,7 +130,8 @@ void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& 
     return;
   }
   const double half = 0.5 * width;
-  std::vector<Vec2> offset(centre.size());
+  std::vector<Vec2>& offset = scratch.offset;
+  offset.resize(centre.size());
   for (std::size_t i = 0; i < centre.size(); ++i)
   {
     const Vec2 before = i > 0 ? leftNormal(centre[i - 1], centre[i]) : leftNormal(centre[0], centre[1]);
@@ -167,7 +177,7 @@ void StopZone::build(const std::vector<Vec2>& points, const std::vector<double>&
   }
   const double bar_start = std::max(start, end - kStopBarThickness);
   const auto fill = [&](double from, double to) {
-    appendPathBand(points, lengths, from, to, parameters.width, triangles_);
+    appendPathBand(points, lengths, from, to, parameters.width, triangles_, scratch_);
   };
   if (parameters.hatched)
   {
@@ -181,7 +191,7 @@ void StopZone::build(const std::vector<Vec2>& points, const std::vector<double>&
     fill(start, bar_start);
   }
   alpha_.assign(triangles_.size(), static_cast<float>(std::clamp(parameters.fill_alpha, 0.0, 1.0)));
-  appendPathBand(points, lengths, bar_start, end, parameters.width, triangles_);
+  appendPathBand(points, lengths, bar_start, end, parameters.width, triangles_, scratch_);
   alpha_.resize(triangles_.size(), 1.0f);
   start_ = start;
   end_ = end;

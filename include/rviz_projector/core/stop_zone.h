@@ -87,6 +87,16 @@ constexpr double kStopStripePeriod = 0.15;  ///< hatched: from one stripe's star
 void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& lengths, double from, double to,
                     double width, std::vector<Vec2>& out);
 
+/// Working buffers of appendPathBand, kept between calls (no allocation once big enough).
+struct PathBandScratch
+{
+  std::vector<Vec2> centre;
+  std::vector<Vec2> offset;
+};
+/// The same with caller-owned working buffers.
+void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& lengths, double from, double to,
+                    double width, std::vector<Vec2>& out, PathBandScratch& scratch);
+
 /**
  * The stop zone for a robot at arc length `robot_arc` of the path moving at the filtered speed
  * `speed` (SpeedEstimate; not moving: empty).
@@ -96,6 +106,7 @@ void appendPathBand(const std::vector<Vec2>& points, const std::vector<double>& 
  * the robot) with alpha factor 1, and before it, from the robot on, the fill (one strip) or the
  * stripes ([robot_arc + k kStopStripePeriod, + kStopStripeLength]) with alpha factor fill_alpha.
  * Empty for an empty or one-point path, a non-finite distance or a zone shorter than 1 mm.
+ * Buffers are kept between calls (no allocation once big enough).
  */
 class StopZone
 {
@@ -114,6 +125,7 @@ public:
 private:
   std::vector<Vec2> triangles_;
   std::vector<float> alpha_;
+  PathBandScratch scratch_;
   double start_ = 0.0;
   double end_ = 0.0;
 };
