@@ -181,10 +181,14 @@ void StopZone::build(const std::vector<Vec2>& points, const std::vector<double>&
   };
   if (parameters.hatched)
   {
-    for (double s = start; s < bar_start; s += kStopStripePeriod)
+    // At most kStopMaxStripes (300 m): beyond that the rest is filled (bogus odometry speeds must
+    // not cost a frame millions of stripes).
+    double s = start;
+    for (int k = 0; k < kStopMaxStripes && s < bar_start; ++k, s = start + k * kStopStripePeriod)
     {
       fill(s, std::min(s + kStopStripeLength, bar_start));
     }
+    fill(s, bar_start);
   }
   else
   {

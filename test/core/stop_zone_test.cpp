@@ -342,3 +342,19 @@ TEST(StopZone, CueDrawingDrawsItOnlyWithTheArrowsAndFromTheRobot)
   d.build(path, spacer.space(path), parameters, settings, input);
   EXPECT_FALSE(d.stopZone().shown()) << "off by default";
 }
+
+TEST(StopZone, HatchingIsBoundedOnAHugeZone)
+{
+  // 10 km of path and a bogus 200 m/s: d = 40,000 + 60 m, clipped at 10 km. 2000 stripes (300 m),
+  // then the rest filled: fill area 0.3 x (2000 x 0.05 + (10,000 - 0.05 - 300)) m^2.
+  const std::vector<Vec2> path = straight(10000.0, 10.0);
+  std::vector<double> lengths;
+  accumulateArcLengths(path, lengths);
+  StopZoneParameters p;
+  p.hatched = true;
+  StopZone zone;
+  zone.build(path, lengths, 0.0, moving(200.0), p);
+  ASSERT_TRUE(zone.shown());
+  EXPECT_NEAR(area(zone, [](float a) { return a < 1.0f; }), 0.3 * (2000 * 0.05 + (10000.0 - 0.05 - 300.0)), 1e-6);
+  EXPECT_LT(zone.triangles().size(), 2u * 3u * (2000u + 1000u + 10u));
+}

@@ -76,6 +76,7 @@ struct StopZoneParameters
 constexpr double kStopBarThickness = 0.05;  ///< along the path; its far edge is the stopping point
 constexpr double kStopStripeLength = 0.05;  ///< hatched: each stripe, along the path
 constexpr double kStopStripePeriod = 0.15;  ///< hatched: from one stripe's start to the next, from the robot on
+constexpr int kStopMaxStripes = 2000;       ///< hatched: beyond 300 m of stripes the rest is filled
 
 /**
  * Appends the triangles of the strip of path between arc lengths `from` and `to` (clamped to
