@@ -229,6 +229,18 @@ TEST_F(StopZoneTest, NeverBeyondTheDestination)
   EXPECT_TRUE(sameColour(colourAt(frame, {1.53, y}), kBlack, 20)) << "nothing beyond the destination";
 }
 
+TEST_F(StopZoneTest, StartsWhereTheRobotIsOnThePath)
+{
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  publishStaticTransform("map", "base_link", 0.6, 0.05, 0.0, 0.0);  // beside the path at x 0.6
+  publishOdometry(0.8);
+  const double stop_x = 0.6 + stopDistance(0.8);  // 1.48
+  const QImage frame = barAt(stop_x);
+  EXPECT_LE(pixelDistance({lastX(frame, kOrange), kSide}, {stop_x, kSide}), 2.0);
+  EXPECT_TRUE(sameColour(colourAt(frame, {0.55, kSide}), kBlack, 20)) << "behind the robot: nothing";
+  EXPECT_TRUE(sameColour(colourAt(frame, {0.65, kSide}), kOrangeFill, 20)) << "ahead of the robot: the fill";
+}
+
 TEST_F(StopZoneTest, HiddenWhileStandingAndOnStaleOrBadOdometry)
 {
   ASSERT_TRUE(pathWithStopZone(2.5));
