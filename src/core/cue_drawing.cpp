@@ -97,6 +97,14 @@ void CueDrawing::build(const std::vector<Vec2>& path, const SpacedPath& spaced, 
       }
     }
   }
+  if (settings.stop_zone && input.goal.arrows)
+  {
+    stop_zone_.build(path, lengths_, robot_arc, input.speed, settings.stop);
+  }
+  else
+  {
+    stop_zone_.build(path, lengths_, robot_arc, SpeedEstimate(), settings.stop);  // empty
+  }
   if (settings.marching && settings.marching_speed > 0.0 && parameters.mode == SpacingMode::Exact)
   {
     animating_ = true;

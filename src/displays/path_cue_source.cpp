@@ -104,8 +104,8 @@ PathCueInput PathCueSource::inputAt(const ros::Time& now, rviz::FrameManager& fr
     {
       robot_status_ = CueStatus{CueStatus::Level::Warn,
                                 "No transform from the Robot frame '" + robot_frame +
-                                    "' to the fixed frame: the horizon starts at the path's start, no turn signal, "
-                                    "the robot counts as standing still"};
+                                    "' to the fixed frame: the horizon and the stop zone start at the path's start, "
+                                    "no turn signal, the robot counts as standing still"};
     }
   }
   input.goal = timeline_.frameAt(input.time);

@@ -19,6 +19,7 @@
 #include "rviz_projector/displays/projected_path_display.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
+#include "rviz_projector/displays/stop_zone_properties.h"
 
 namespace rviz_projector
 {
@@ -42,12 +43,15 @@ void ProjectedPathDisplay::checkMarchingMode()
 
 bool ProjectedPathDisplay::cuesActive() const
 {
-  return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_source_.subscribed();
+  return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_settings_.stop_zone ||
+         cue_source_.subscribed();
 }
 
 void ProjectedPathDisplay::updateCues()
 {
   cue_settings_ = cue_properties_->settings();
+  cue_settings_.stop_zone = stop_properties_->enabled->getBool();
+  cue_settings_.stop = stop_properties_->parameters();
   cue_source_.setParameters(cue_properties_->goalParameters());
   checkMarchingMode();
   if (!cuesActive() && arrow_mesh_)
@@ -68,6 +72,22 @@ void ProjectedPathDisplay::updateStateTopic()
   state_status_shown_ = CueStatus();
   deleteStatus("State");
   showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);  // e.g. an invalid topic name
+  updateCues();
+}
+
+void ProjectedPathDisplay::updateStopZone()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  stop_source_.subscribe(update_nh_, stop_properties_->wantedTopic());
+  stop_status_shown_ = CueStatus();
+  deleteStatus("Stop zone");
+  if (stop_properties_->enabled->getBool())
+  {
+    showCueStatus("Stop zone", stop_source_.status(cueTime().toSec()), stop_status_shown_);
+  }
   updateCues();
 }
 
@@ -106,11 +126,15 @@ void ProjectedPathDisplay::showCueStatus(const QString& name, const CueStatus& s
 void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
 {
   last_advance_ = now;
-  const PathCueInput input = cue_source_.inputAt(now, *context_->getFrameManager(),
-                                                 cue_properties_->robot_frame->getFrameStd(),
-                                                 cue_settings_.needsRobot());
+  PathCueInput input = cue_source_.inputAt(now, *context_->getFrameManager(),
+                                           cue_properties_->robot_frame->getFrameStd(), cue_settings_.needsRobot());
   showCueStatus("Robot", cue_source_.robotStatus(), robot_status_shown_);
   showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);
+  if (cue_settings_.stop_zone)
+  {
+    input.speed = stop_source_.speedAt(input.time);
+    showCueStatus("Stop zone", stop_source_.status(input.time), stop_status_shown_);
+  }
   if (!last_msg_)
   {
     return;
@@ -134,7 +158,9 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
   if (!force && input.goal.colour == cue_colour_drawn_ && cue_next_.cross() == cue_drawn_.cross() &&
       cue_next_.destinationAlpha() == cue_drawn_.destinationAlpha() &&
       cue_next_.arrowAlpha() == cue_drawn_.arrowAlpha() && same(cue_next_.arrows(), cue_drawn_.arrows()) &&
-      same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()))
+      same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()) &&
+      same(cue_next_.stopZone().triangles(), cue_drawn_.stopZone().triangles()) &&
+      cue_next_.stopZone().alpha() == cue_drawn_.stopZone().alpha())
   {
     return;  // the projector already shows exactly this: no upload, no frame
   }
@@ -152,6 +178,9 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
   arrow_mesh_->setFlatTriangles(cue_drawn_.arrows(), cue_drawn_.arrowAlpha(), height + kArrowLift, arrow_colour);
   circle_mesh_->setFlatTriangles(cue_drawn_.destination(), height, destination_colour);
   glyph_mesh_->setFlatTriangles(cue_drawn_.glyph(), height + kArrowLift, arrow_colour);
+  Ogre::ColourValue stop_colour = stop_properties_->color->getOgreColor();
+  stop_colour.a = alpha;
+  stop_mesh_->setFlatTriangles(cue_drawn_.stopZone().triangles(), cue_drawn_.stopZone().alpha(), height, stop_colour);
   ++mesh_builds_;
   ProjectionChangeNotifier::notify();
   context_->queueRender();

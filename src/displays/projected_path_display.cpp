@@ -22,6 +22,7 @@
 #include "rviz_projector/displays/path_cue_properties.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
+#include "rviz_projector/displays/stop_zone_properties.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -117,6 +118,7 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
       this, SLOT(checkPathTimeout()), this);
   path_timeout_property_->setMin(0.0f);
   cue_properties_ = std::make_unique<PathCueProperties>(this);
+  stop_properties_ = std::make_unique<StopZoneProperties>(this);
   cue_settings_ = cue_properties_->settings();
   ProjectionAnimation::add(this);
 }
@@ -126,6 +128,7 @@ ProjectedPathDisplay::~ProjectedPathDisplay()
   ProjectionAnimation::remove(this);
   pauseDraining();
   cue_source_.unsubscribe();
+  stop_source_.unsubscribe();
 }
 
 void ProjectedPathDisplay::onInitialize()
@@ -142,9 +145,11 @@ void ProjectedPathDisplay::onInitialize()
   arrow_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  stop_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
   updateStateTopic();
+  updateStopZone();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
 }
 
@@ -153,7 +158,7 @@ void ProjectedPathDisplay::onEnable()
   MFDClass::onEnable();
   resumeDraining();
   scene_node_->setVisible(true);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get()})
   {
     if (mesh)
     {
@@ -168,7 +173,7 @@ void ProjectedPathDisplay::onDisable()
   MFDClass::onDisable();
   pauseDraining();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get()})
   {
     if (mesh)
     {
@@ -194,9 +199,11 @@ void ProjectedPathDisplay::reset()
     arrow_mesh_->clear();
     circle_mesh_->clear();
     glyph_mesh_->clear();
+    stop_mesh_->clear();
     ProjectionChangeNotifier::notify();
   }
   cue_source_.clear();
+  stop_source_.clear();
   robot_status_shown_ = CueStatus();
   state_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
@@ -224,10 +231,12 @@ void ProjectedPathDisplay::load(const rviz::Config& config)
   check.choice(config.mapGetChild(mode_property_->getName()), mode_property_, {"Exact", "Paper"}, "Exact");
   check.choice(config.mapGetChild(style_property_->getName()), style_property_, {"Flat", "3D"}, "Flat");
   QString report = check.report();
-  const QString cues = cue_properties_->checkLoaded(config);
-  if (!cues.isEmpty())
+  for (const QString& part : {cue_properties_->checkLoaded(config), stop_properties_->checkLoaded(config)})
   {
-    report += (report.isEmpty() ? "" : "; ") + cues;
+    if (!part.isEmpty())
+    {
+      report += (report.isEmpty() ? "" : "; ") + part;
+    }
   }
   if (report.isEmpty())
   {
@@ -325,6 +334,7 @@ void ProjectedPathDisplay::drainQueue()
   if (epoch_.changed(RosClock::shared().tick()))
   {
     cue_source_.clear();
+    stop_source_.clear();
   }
   drain();
   if (tf_waiting_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - tf_wait_since_).count() > kTfWaitGrace)
@@ -332,7 +342,8 @@ void ProjectedPathDisplay::drainQueue()
     tf_waiting_ = false;  // reported once; a path that passes sets Transform OK
     setStatus(rviz::StatusProperty::Error, "Transform", tf_wait_error_);
   }
-  if (cue_source_.takeNews() && arrow_mesh_ && isEnabled() && cuesActive())
+  const bool odometry = stop_source_.takeNews();
+  if ((cue_source_.takeNews() || odometry) && arrow_mesh_ && isEnabled() && cuesActive())
   {
     drawCues(cueTime(), false);  // a new goal state shows at once, whatever the clock does
   }
@@ -360,6 +371,7 @@ void ProjectedPathDisplay::checkPathTimeout()
   arrow_mesh_->clear();
   circle_mesh_->clear();
   glyph_mesh_->clear();
+  stop_mesh_->clear();
   deleteStatus("Style");
   setStatus(rviz::StatusProperty::Warn, "Path",
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
@@ -458,6 +470,7 @@ void ProjectedPathDisplay::redraw()
     return;
   }
   glyph_mesh_->clear();
+  stop_mesh_->clear();
   const double height = height_property_->getFloat();
   const float alpha = alpha_property_->getFloat();
   Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
@@ -495,6 +508,11 @@ void ProjectedPathDisplay::redraw()
 std::size_t ProjectedPathDisplay::glyphTriangleCount() const
 {
   return glyph_mesh_ ? glyph_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::stopZoneTriangleCount() const
+{
+  return stop_mesh_ ? stop_mesh_->triangleCount() : 0;
 }
 
 std::size_t ProjectedPathDisplay::arrowTriangleCount() const

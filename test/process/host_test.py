@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """projector_host as the robot runs it (issue 13): a real process under the suite's X server.
 
-- it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px);
+- it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px), the
+  ProjectedPath's Stop zone (issue 25) included;
 - a reload with a changed property changes the pixels; a broken reload (bad YAML, a plugin that
   is not installed, a property value of the wrong type, no ProjectorCamera) is refused with a
   message, keeps the old picture and the process;
@@ -25,7 +26,7 @@ import unittest
 import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
-from nav_msgs.msg import Path
+from nav_msgs.msg import Odometry, Path
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker
 
@@ -39,6 +40,7 @@ START_TIMEOUT = 40.0
 EXIT_LIMIT = 2.0
 MAGENTA = (255, 0, 255)
 CYAN = (0, 255, 255)
+ORANGE = (255, 140, 0)  # the Stop zone's bar in its default Color
 
 
 def xrandr(*args):
@@ -62,6 +64,7 @@ class HostTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("host_test", anonymous=True)
         cls.plan = rospy.Publisher("/host_test/plan", Path, queue_size=1, latch=True)
+        cls.odom = rospy.Publisher("/host_test/odom", Odometry, queue_size=1)
         cls.diagnostics = []
         cls.diag_lock = threading.Lock()
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
@@ -75,6 +78,7 @@ class HostTest(unittest.TestCase):
         self.x = XWindows()
         self.procs = []
         self.tmp = tempfile.mkdtemp(prefix="host_test_")
+        self.odometry_speed = None  # set: wait_colour publishes this forward speed with each try
         self.publish_path()
 
     def tearDown(self):
@@ -115,14 +119,24 @@ class HostTest(unittest.TestCase):
         windows = wait_for(lambda: self.x.mapped_output_windows(pid), timeout, 0.1)
         return windows[0] if windows else None
 
-    def wait_colour(self, pid, colour, minimum=200, timeout=20.0):
-        """The output window once at least `minimum` pixels of `colour` show (None on timeout)."""
+    def wait_colour(self, pid, colour, minimum=200, timeout=20.0, also=None):
+        """The output window once at least `minimum` pixels of `colour` show (and `also`, a pair
+        (colour, minimum), holds too) (None on timeout)."""
         def ready():
             w = self.output_window(pid, timeout=0.5)
             if not w:
                 return None
             self.publish_path()
+            if self.odometry_speed is not None:
+                odom = Odometry()
+                odom.header.stamp = rospy.Time.now()
+                odom.header.frame_id = "map"
+                odom.child_frame_id = "base_link"
+                odom.twist.twist.linear.x = self.odometry_speed
+                self.odom.publish(odom)
             pixels = grab_window(self.x, w)
+            if also is not None and pixels.count_colour(also[0]) < also[1]:
+                return None
             return (w, pixels) if pixels.count_colour(colour) >= minimum else None
         return wait_for(ready, timeout, 0.2)
 
@@ -140,16 +154,23 @@ class HostTest(unittest.TestCase):
 
     # ---- tests -----------------------------------------------------------------------------
     def test_same_pixels_as_rviz(self):
-        config = os.path.join(CONFIGS, "host.rviz")
+        # With the Stop zone on (its bar and fill are lit pixels too), the robot at 0.8 m/s.
+        config = self.config_copy(replace={"      Arrow color: 255; 0; 255\n": "      Arrow color: 255; 0; 255\n"
+                                           "      Stop zone:\n        Value: true\n"
+                                           "        Odometry topic: /host_test/odom\n"})
+        self.odometry_speed = 0.8
         rviz = RvizProcess(config, label="host_same_pixels_rviz")
         self.procs.append(rviz)
-        shown = self.wait_colour(rviz.pid, MAGENTA, timeout=START_TIMEOUT)
+        shown = self.wait_colour(rviz.pid, MAGENTA, timeout=START_TIMEOUT, also=(ORANGE, 200))
         self.assertIsNotNone(shown, "rviz never showed the arrows: " + rviz.log_tail())
         rviz_window, rviz_pixels = shown
         rviz.stop()
         self.procs.remove(rviz)
         self.assertTrue(wait_for(lambda: not self.x.mapped_output_windows(), 10.0), "rviz's window stayed")
-        host, (host_window, host_pixels) = self.start_showing(config)
+        host = self.start_host(config)
+        shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT, also=(ORANGE, 200))
+        self.assertIsNotNone(shown, "projector_host never showed the arrows and the stop zone: " + host.log_tail())
+        host_window, host_pixels = shown
         self.assertEqual((rviz_window["x"], rviz_window["y"], rviz_window["width"], rviz_window["height"]),
                          (host_window["x"], host_window["y"], host_window["width"], host_window["height"]),
                          "the host's output window is not where rviz's was")

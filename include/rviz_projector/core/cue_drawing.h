@@ -9,6 +9,7 @@
 #include "rviz_projector/core/goal_cues.h"
 #include "rviz_projector/core/spaced_path.h"
 #include "rviz_projector/core/spacing_parameters.h"
+#include "rviz_projector/core/stop_zone.h"
 #include "rviz_projector/core/turn_signal.h"
 #include "rviz_projector/core/vec2.h"
 
@@ -28,9 +29,11 @@ struct PathCueSettings
   double glyph_size = 0.3;      ///< metres across
   double glyph_ahead = 0.8;     ///< from the robot's centre to the glyph's centre, forwards, metres
   double glyph_aside = 0.45;    ///< ... and sideways (towards the inside of the turn), metres
+  bool stop_zone = false;
+  StopZoneParameters stop;
 
-  /// Whether any cue needs the robot's position (horizon, turn signal).
-  bool needsRobot() const { return horizon || turn_signal; }
+  /// Whether any cue needs the robot's position (horizon, turn signal, stop zone).
+  bool needsRobot() const { return horizon || turn_signal || stop_zone; }
 };
 
 /// The inputs that change over time.
@@ -40,6 +43,7 @@ struct PathCueInput
   bool robot_known = false;   ///< the robot's position could be looked up
   Vec2 robot;                 ///< the robot's floor position in the path's (fixed) frame
   GoalCueFrame goal;          ///< from GoalCueTimeline (default: draw everything, Normal colours)
+  SpeedEstimate speed;        ///< the robot's filtered speed (default: standing) for the stop zone
 };
 
 /**
@@ -55,6 +59,9 @@ struct PathCueInput
  * - Turn glyph: when the turn signal is on, the robot is known, detectTurn finds a turn and the
  *   arrows are shown, lit while blinkOn(time, turn_hz) (blinking from time 0, so every projector
  *   blinks in step).
+ * - Stop zone: when on and the goal frame shows the arrows, StopZone::build from the robot's arc
+ *   length (the path's start without a known robot, as the horizon) at `input.speed`; the horizon
+ *   does not cut it.
  * `animating` says whether the result can change with time alone (marching, a blinking glyph, a
  * goal frame that animates): the display then keeps rendering frames.
  * Buffers are kept between calls (no allocation once big enough).
@@ -76,6 +83,8 @@ public:
   /// Turn-signal glyph triangles (empty when not shown) and what was detected.
   const std::vector<Vec2>& glyph() const { return glyph_; }
   const TurnDetection& turn() const { return turn_; }
+  /// The stop zone's triangles and per-vertex alpha (not shown: empty).
+  const StopZone& stopZone() const { return stop_zone_; }
   bool animating() const { return animating_; }
   /// Whether the horizon is limited (for the display's status): where it starts, arc length.
   double horizonStart() const { return horizon_start_; }
@@ -90,6 +99,7 @@ private:
   bool cross_ = false;
   bool animating_ = false;
   TurnDetection turn_;
+  StopZone stop_zone_;
   double horizon_start_ = 0.0;
 };
 }  // namespace rviz_projector

@@ -21,6 +21,7 @@
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/private_callback_queue.h"
 #include "rviz_projector/displays/projection_animation.h"
+#include "rviz_projector/displays/stop_zone_source.h"
 #endif
 
 namespace rviz
@@ -34,13 +35,15 @@ namespace rviz_projector
 {
 class FloorMesh;
 struct PathCueProperties;
+struct StopZoneProperties;
 
 /// The base of ProjectedPathDisplay: rviz's MessageFilterDisplay, destroyed before the queue.
 class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFilterDisplay<nav_msgs::Path>
 {
 };
 
-/// Cues (issue 15: horizon, marching, robot state, pre-motion warning, turn signal) are computed by
+/// Cues (issue 15: horizon, marching, robot state, pre-motion warning, turn signal; issue 25: stop
+/// zone) are computed by
 /// the core's CueDrawing from PathCueSource's inputs at the time of each frame (AnimatedDrawing).
 class ProjectedPathDisplay : public ProjectedPathBase, public AnimatedDrawing
 {
@@ -66,6 +69,10 @@ public:
   std::size_t meshBuilds() const { return mesh_builds_; }
   /// Triangles of the turn-signal glyph drawn now.
   std::size_t glyphTriangleCount() const;
+  /// Triangles of the stop zone drawn now (fill and bar).
+  std::size_t stopZoneTriangleCount() const;
+  /// Odometry messages the stop zone took (for tests: ROS time may move on once it has its message).
+  std::size_t odometryMessages() const { return stop_source_.messages(); }
 
   /// Brings the cues up to `now` (ROS time); called by every projector at each frame tick and by
   /// rviz's update. Redraws only when the picture changes. No cue on: nothing.
@@ -95,6 +102,8 @@ private Q_SLOTS:
   /// A cue property changed: new settings, drawn at once.
   void updateCues();
   void updateStateTopic();
+  /// A Stop zone property changed: (un)subscribes the Odometry topic, then updateCues().
+  void updateStopZone();
 
 private:
   /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
@@ -164,5 +173,10 @@ private:
   CueStatus robot_status_shown_;
   CueStatus state_status_shown_;
   std::unique_ptr<FloorMesh> glyph_mesh_;
+
+  std::unique_ptr<StopZoneProperties> stop_properties_;
+  StopZoneSource stop_source_;
+  CueStatus stop_status_shown_;
+  std::unique_ptr<FloorMesh> stop_mesh_;
 };
 }  // namespace rviz_projector

@@ -1,0 +1,60 @@
+// Where the stop zone's speed comes from: a nav_msgs/Odometry topic (on the display's private
+// callback queue), its twist checked and smoothed by the core's SpeedFilter. One part of
+// ProjectedPathDisplay: it returns the speed for an instant and what the "Stop zone" status says.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <string>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/node_handle.h>
+#include <ros/subscriber.h>
+
+#include "rviz_projector/core/stop_zone.h"
+#include "rviz_projector/displays/path_cue_source.h"
+#endif
+
+namespace rviz_projector
+{
+class StopZoneSource
+{
+public:
+  /// Odometry older than this (ROS time since it arrived) is stale: no stop zone.
+  static constexpr double kStaleAfter = 1.0;
+
+  /// Subscribes to `topic` with `nh` (whose callback queue the display drains); empty: none. The
+  /// same topic again changes nothing.
+  void subscribe(ros::NodeHandle& nh, const std::string& topic);
+  void unsubscribe();
+  /// Forgets the speed (rviz's Reset, a backward jump of ROS time).
+  void clear();
+
+  /// The filtered speed at `now` (ROS time, seconds); standing (no zone) without fresh, usable
+  /// odometry.
+  SpeedEstimate speedAt(double now);
+  /// What the "Stop zone" status says at `now` (empty text: the stop zone is off).
+  CueStatus status(double now) const;
+  /// Odometry messages taken so far (tests wait for theirs).
+  std::size_t messages() const { return messages_; }
+  /// Whether a message arrived since the last call (the picture may change at once).
+  bool takeNews()
+  {
+    const bool news = news_;
+    news_ = false;
+    return news;
+  }
+
+private:
+  void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
+
+  ros::Subscriber subscriber_;
+  std::string topic_;
+  std::string subscribe_error_;
+  SpeedFilter filter_;
+  bool received_ = false;
+  bool bad_twist_ = false;    // the last message's twist had NaN/Inf
+  double last_arrival_ = 0.0; // ROS time of the last message
+  bool news_ = false;
+  std::size_t messages_ = 0;
+};
+}  // namespace rviz_projector

@@ -1,0 +1,100 @@
+#include "rviz_projector/displays/stop_zone_source.h"
+
+#include <cmath>
+
+#include "rviz_projector/displays/ros_clock.h"
+
+namespace rviz_projector
+{
+void StopZoneSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
+{
+  if (topic == topic_ && subscribe_error_.empty())
+  {
+    return;
+  }
+  unsubscribe();
+  topic_ = topic;
+  if (topic_.empty())
+  {
+    return;
+  }
+  try
+  {
+    subscriber_ = nh.subscribe(topic_, 10, &StopZoneSource::onOdometry, this);
+  }
+  catch (const ros::Exception& e)
+  {
+    topic_.clear();
+    subscribe_error_ = std::string("Cannot subscribe to the Odometry topic '") + topic + "': " + e.what();
+  }
+}
+
+void StopZoneSource::unsubscribe()
+{
+  subscriber_.shutdown();
+  topic_.clear();
+  subscribe_error_.clear();
+  clear();
+}
+
+void StopZoneSource::clear()
+{
+  filter_.clear();
+  received_ = false;
+  bad_twist_ = false;
+}
+
+void StopZoneSource::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
+{
+  const double now = RosClock::shared().policy().rosNow();  // read by the display's drain, before this
+  received_ = true;
+  news_ = true;
+  ++messages_;
+  last_arrival_ = now;
+  // The twist is in child_frame_id (the robot): its planar norm is the robot's speed in any frame.
+  const double vx = msg->twist.twist.linear.x, vy = msg->twist.twist.linear.y;
+  bad_twist_ = !std::isfinite(vx) || !std::isfinite(vy);
+  if (bad_twist_)
+  {
+    filter_.clear();  // a later usable message starts afresh
+    return;
+  }
+  filter_.add(std::hypot(vx, vy), now);
+}
+
+SpeedEstimate StopZoneSource::speedAt(double now)
+{
+  if (!received_ || bad_twist_ || now - last_arrival_ > kStaleAfter)
+  {
+    return SpeedEstimate();
+  }
+  return filter_.at(now);
+}
+
+CueStatus StopZoneSource::status(double now) const
+{
+  if (!subscribe_error_.empty())
+  {
+    return CueStatus{CueStatus::Level::Error, subscribe_error_};
+  }
+  if (topic_.empty())
+  {
+    return CueStatus{CueStatus::Level::Warn, "No Odometry topic set: no stop zone"};
+  }
+  if (!received_)
+  {
+    return CueStatus{CueStatus::Level::Warn, "No odometry received yet on " + topic_ + ": no stop zone"};
+  }
+  if (bad_twist_)
+  {
+    return CueStatus{CueStatus::Level::Error,
+                     "The odometry's twist on " + topic_ + " has NaN/Inf values: no stop zone"};
+  }
+  if (now - last_arrival_ > kStaleAfter)
+  {
+    // A fixed text: a status that changes every frame repaints rviz's whole property tree.
+    return CueStatus{CueStatus::Level::Warn, "No odometry on " + topic_ + " for more than 1 s: no stop zone"};
+  }
+  return CueStatus{CueStatus::Level::Ok, "Odometry received on " + topic_};
+}
+}  // namespace rviz_projector

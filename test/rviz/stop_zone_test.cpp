@@ -1,0 +1,400 @@
+// ProjectedPath's Stop zone (issue 25) in a real rviz, judged on the projector output's pixels: the
+// bar's far edge where the stopping distance puts it, the fill between robot and bar, stripes when
+// hatched, the speed filter's step response, the clip at the destination; statuses for no, stale and
+// NaN odometry; the properties saved and loaded, and a config without the group. ROS time is
+// simulated (ros::Time::setNow). Expected places come from the formula d = v^2 / (2 a) + v t and the
+// documented filter (first order, tau = 0.3 s) written out here, and from image_geometry
+// (windowPixel), never from the code under test.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <vector>
+
+#include <QTemporaryDir>
+#include <nav_msgs/Odometry.h>
+#include <rviz/config.h>
+#include <rviz/display.h>
+#include <rviz/display_group.h>
+#include <rviz/properties/property.h>
+#include <rviz/visualization_manager.h>
+#include <rviz/yaml_config_reader.h>
+#include <rviz/yaml_config_writer.h>
+
+#include "projector_test_fixture.h"
+#include "rviz_projector/displays/projected_path_display.h"
+#include "rviz_projector/displays/projector_camera_display.h"
+#include "rviz_projector/displays/projector_output_window.h"
+
+using namespace rviz_projector_test;
+
+namespace
+{
+constexpr double kRobotX = 0.3;           // the robot (base_link) and the path's start
+constexpr double kDecel = 0.5, kReaction = 0.3;
+constexpr double kSide = 0.1;             // sample beside the arrows (heads 0.12 wide), inside the zone (0.3 wide)
+const QRgb kOrange = qRgb(255, 140, 0);   // the default Color, opaque (the bar)
+const QRgb kOrangeFill = qRgb(102, 56, 0);  // 0.4 of it over black (the fill, Alpha 0.4)
+const QRgb kZoneBlue = qRgb(0, 128, 255);
+
+/// The formula, by hand.
+double stopDistance(double v)
+{
+  return v * v / (2.0 * kDecel) + v * kReaction;
+}
+
+void saveShot(const QImage& image, const char* name)
+{
+  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
+  {
+    image.save(QString("%1/%2.png").arg(folder, name));
+  }
+}
+
+std::vector<Vec2> straightPath(double end)
+{
+  std::vector<Vec2> points;
+  for (double x = kRobotX; x < end - 1e-9; x += 0.05)
+  {
+    points.push_back({x, 0.0});
+  }
+  points.push_back({end, 0.0});
+  return points;
+}
+
+class StopZoneTest : public ProjectorSceneTest
+{
+protected:
+  void SetUp() override
+  {
+    ProjectorSceneTest::SetUp();
+    start_ = monotonicTestStart(2.0);
+    ros::Time::setNow(start_);
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/test/odom", 5);
+  }
+
+  void at(double t) { ros::Time::setNow(start_ + ros::Duration(t)); }
+
+  /// A path from the robot (standing at x 0.3 facing +x) to x = `end`, the stop zone on with its
+  /// defaults (Deceleration 0.5, Reaction time 0.3) on /test/odom.
+  bool pathWithStopZone(double end)
+  {
+    publishStaticTransform("map", "base_link", kRobotX, 0.0, 0.0, 0.0);
+    path_ = addPath("/test/plan", straightPath(end));
+    if (path_ == nullptr)
+    {
+      return false;
+    }
+    path_->subProp("Height above floor")->setValue(0.0);  // the oracle's points lie on the floor
+    zone()->subProp("Odometry topic")->setValue("/test/odom");
+    zone()->setValue(true);
+    return waitFor([&] { return odom_pub_.getNumSubscribers() > 0; });
+  }
+
+  rviz::Property* zone() { return path_->subProp("Stop zone"); }
+
+  /// Odometry with the twist (vx, vy) in the robot's frame; returns once the display took it (its
+  /// arrival time is the ROS time then: time may move on after this).
+  void publishOdometry(double vx, double vy = 0.0)
+  {
+    const std::size_t before = path_->odometryMessages();
+    nav_msgs::Odometry msg;
+    msg.header.stamp = ros::Time::now();
+    msg.header.frame_id = "odom";
+    msg.child_frame_id = "base_link";
+    msg.pose.pose.orientation.w = 1.0;
+    msg.twist.twist.linear.x = vx;
+    msg.twist.twist.linear.y = vy;
+    odom_pub_.publish(msg);
+    EXPECT_TRUE(waitFor([&] { return path_->odometryMessages() > before; })) << "odometry not taken";
+  }
+
+  QRgb colourAt(const QImage& frame, const Vec2& floor) const
+  {
+    const Vec2 px = windowPixel(floor);
+    return frame.pixel(int(std::lround(px.x)), int(std::lround(px.y)));
+  }
+
+  QImage grabUntil(const std::function<bool(const QImage&)>& ok) { return imagePart(grabWhen(ok, 8.0)); }
+
+  /// Walking along y = `y` from x 0.5 (1 mm steps), the last floor point whose pixel has `colour`
+  /// (NaN: none).
+  double lastX(const QImage& frame, QRgb colour, double y = kSide, double to = 1.7) const
+  {
+    double last = std::numeric_limits<double>::quiet_NaN();
+    for (double x = 0.5; x <= to + 1e-9; x += 0.001)
+    {
+      if (sameColour(colourAt(frame, {x, y}), colour, 40))
+      {
+        last = x;
+      }
+    }
+    return last;
+  }
+
+  /// Pixels between the oracle's pixels of two floor points.
+  double pixelDistance(const Vec2& a, const Vec2& b) const
+  {
+    const Vec2 pa = windowPixel(a), pb = windowPixel(b);
+    return std::hypot(pa.x - pb.x, pa.y - pb.y);
+  }
+
+  /// The frame once the bar's far edge is within 2 pixels of the stopping point `stop_x`.
+  QImage barAt(double stop_x, double y = kSide)
+  {
+    return grabUntil([&](const QImage& image) {
+      const double last = lastX(image, kOrange, y);
+      return std::isfinite(last) && pixelDistance({last, y}, {stop_x, y}) <= 2.0;
+    });
+  }
+
+  ros::Time start_;
+  rviz_projector::ProjectedPathDisplay* path_ = nullptr;
+  ros::Publisher odom_pub_;
+};
+}  // namespace
+
+TEST_F(StopZoneTest, BarSitsAtTheStoppingDistanceWithTheFloorFilledBeforeIt)
+{
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("No odometry received yet"); }));
+  // 0.8 m/s (as x 0.48, y 0.64: the planar norm): d = 0.64 + 0.24 = 0.88 m, the bar's far edge at x 1.18.
+  publishOdometry(0.48, 0.64);
+  const double stop_x = kRobotX + stopDistance(0.8);
+  ASSERT_NEAR(stop_x, 1.18, 1e-12);
+  const QImage frame = barAt(stop_x);
+  saveShot(frame, "cues-stop-zone");
+  const double last = lastX(frame, kOrange);
+  ASSERT_TRUE(std::isfinite(last)) << "no bar drawn";
+  EXPECT_LE(pixelDistance({last, kSide}, {stop_x, kSide}), 2.0) << "bar's far edge at x = " << last;
+  EXPECT_TRUE(sameColour(colourAt(frame, {stop_x - 0.025, kSide}), kOrange, 30)) << "the bar, 5 cm thick";
+  EXPECT_TRUE(sameColour(colourAt(frame, {stop_x - 0.025, -kSide}), kOrange, 30)) << "across the path";
+  EXPECT_TRUE(sameColour(colourAt(frame, {stop_x + 0.02, kSide}), kBlack, 20)) << "nothing beyond the bar";
+  for (double x : {0.6, 0.8, 1.0, 1.1})
+  {
+    EXPECT_TRUE(sameColour(colourAt(frame, {x, kSide}), kOrangeFill, 20))
+        << "fill at x = " << x << ": " << describe(colourAt(frame, {x, kSide}));
+  }
+  EXPECT_TRUE(sameColour(colourAt(frame, {0.8, 0.2}), kBlack, 20)) << "0.3 m wide: nothing at y = 0.2";
+  EXPECT_GT(countColour(frame, kArrowMagenta), 100) << "the arrows are still drawn";
+  EXPECT_EQ(statusOf(path_, "Stop zone").level, rviz::StatusProperty::Ok);
+  EXPECT_GT(path_->stopZoneTriangleCount(), 0u);
+
+  // The filter: 0.4 m/s from t = 1; 0.3 s later (one time constant) the speed is
+  // 0.4 + (0.8 - 0.4) exp(-1).
+  at(1.0);
+  publishOdometry(0.4);
+  at(1.3);
+  const double v = 0.4 + 0.4 * std::exp(-1.0);
+  const double slower_x = kRobotX + stopDistance(v);
+  const QImage slower = barAt(slower_x);
+  EXPECT_LE(pixelDistance({lastX(slower, kOrange), kSide}, {slower_x, kSide}), 2.0)
+      << "one time constant after the step: bar at x = " << slower_x << " (unfiltered: "
+      << kRobotX + stopDistance(0.4) << ")";
+
+  // Hatched: stripes 5 cm long every 15 cm from the robot (x 0.3): [0.6, 0.65] lit, 0.7 dark.
+  at(1.4);
+  publishOdometry(0.8);
+  at(5.0);
+  publishOdometry(0.8);  // settled at 0.8 again: bar at 1.18
+  zone()->subProp("Style")->setValue("Hatched");
+  const QImage hatched = grabUntil([&](const QImage& image) {
+    return sameColour(colourAt(image, {0.7, kSide}), kBlack, 20) && sameColour(colourAt(image, {0.625, kSide}), kOrangeFill, 20);
+  });
+  EXPECT_TRUE(sameColour(colourAt(hatched, {0.625, kSide}), kOrangeFill, 20)) << "a stripe";
+  EXPECT_TRUE(sameColour(colourAt(hatched, {0.7, kSide}), kBlack, 20)) << "between stripes";
+  EXPECT_TRUE(sameColour(colourAt(hatched, {0.925, kSide}), kOrangeFill, 20)) << "a stripe";
+  EXPECT_LE(pixelDistance({lastX(hatched, kOrange), kSide}, {stop_x, kSide}), 2.0);
+  saveShot(hatched, "cues-stop-zone-hatched");
+
+  // Colour and width: a blue zone 0.5 m wide reaches y = 0.2.
+  zone()->subProp("Style")->setValue("Filled");
+  zone()->subProp("Color")->setValue(QColor(0, 128, 255));
+  zone()->subProp("Alpha")->setValue(1.0);
+  zone()->subProp("Width")->setValue(0.5);
+  const QImage blue = grabUntil([&](const QImage& image) { return sameColour(colourAt(image, {0.8, 0.2}), kZoneBlue, 30); });
+  EXPECT_TRUE(sameColour(colourAt(blue, {0.8, 0.2}), kZoneBlue, 30));
+  EXPECT_TRUE(sameColour(colourAt(blue, {0.8, 0.3}), kBlack, 20));
+}
+
+TEST_F(StopZoneTest, NeverBeyondTheDestination)
+{
+  ASSERT_TRUE(pathWithStopZone(1.5));  // destination circle (0.2 m) at x 1.5, in view
+  publishOdometry(2.0);                // d = 4 + 0.6 = 4.6 m: far beyond the path's 1.2 m
+  const double y = 0.12;               // beside the destination circle
+  const QImage frame = barAt(1.5, y);
+  EXPECT_LE(pixelDistance({lastX(frame, kOrange, y), y}, {1.5, y}), 2.0) << "the bar ends at the destination";
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.53, y}), kBlack, 20)) << "nothing beyond the destination";
+}
+
+TEST_F(StopZoneTest, StartsWhereTheRobotIsOnThePath)
+{
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  publishStaticTransform("map", "base_link", 0.6, 0.05, 0.0, 0.0);  // beside the path at x 0.6
+  publishOdometry(0.8);
+  const double stop_x = 0.6 + stopDistance(0.8);  // 1.48
+  const QImage frame = barAt(stop_x);
+  EXPECT_LE(pixelDistance({lastX(frame, kOrange), kSide}, {stop_x, kSide}), 2.0);
+  EXPECT_TRUE(sameColour(colourAt(frame, {0.55, kSide}), kBlack, 20)) << "behind the robot: nothing";
+  EXPECT_TRUE(sameColour(colourAt(frame, {0.65, kSide}), kOrangeFill, 20)) << "ahead of the robot: the fill";
+}
+
+TEST_F(StopZoneTest, HiddenWhileStandingAndOnStaleOrBadOdometry)
+{
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  const auto noZone = [&](const QImage& image) {
+    return countColour(image, kOrange, 40) == 0 && countColour(image, kOrangeFill, 20) == 0;
+  };
+  const auto zoneShown = [&](const QImage& image) { return countColour(image, kOrange, 40) > 100; };
+  publishOdometry(0.0);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").level == rviz::StatusProperty::Ok; }));
+  EXPECT_TRUE(noZone(grabUntil(noZone))) << "standing: no zone";
+  EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100);
+
+  publishOdometry(0.8);  // from standing: the filter rises from 0
+  at(1.0);
+  publishOdometry(0.8);
+  EXPECT_TRUE(zoneShown(grabUntil(zoneShown)));
+  // No odometry for 2 s: stale.
+  at(3.0);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("for more than 1 s"); }));
+  EXPECT_EQ(statusOf(path_, "Stop zone").level, rviz::StatusProperty::Warn);
+  EXPECT_TRUE(noZone(grabUntil(noZone))) << "stale odometry: no zone";
+
+  publishOdometry(0.8);
+  EXPECT_TRUE(zoneShown(grabUntil(zoneShown))) << "fresh odometry: back";
+  publishOdometry(std::numeric_limits<double>::quiet_NaN(), 0.0);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("NaN/Inf"); }));
+  EXPECT_EQ(statusOf(path_, "Stop zone").level, rviz::StatusProperty::Error);
+  const QImage nan = grabUntil(noZone);
+  EXPECT_TRUE(noZone(nan)) << "NaN twist: no zone";
+  EXPECT_GT(countColour(nan, kArrowMagenta), 100) << "the arrows keep running";
+  publishOdometry(0.0, std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("NaN/Inf"); }));
+  publishOdometry(0.8);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").level == rviz::StatusProperty::Ok; }));
+  EXPECT_TRUE(zoneShown(grabUntil(zoneShown))) << "usable odometry again: back";
+
+  // Off: no zone, no status.
+  zone()->setValue(false);
+  EXPECT_TRUE(noZone(grabUntil(noZone)));
+  EXPECT_TRUE(waitFor([&] { return !statusOf(path_, "Stop zone").present; }));
+  zone()->subProp("Odometry topic")->setValue("");
+  zone()->setValue(true);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("No Odometry topic"); }));
+  zone()->subProp("Odometry topic")->setValue("not a valid topic!");
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").level == rviz::StatusProperty::Error; }));
+}
+
+namespace
+{
+class StopZoneConfigTest : public RvizTest
+{
+protected:
+  /// The first ProjectedPath of `rviz` after loading the YAML text `yaml`.
+  rviz::Display* loadYaml(RvizInstance& rviz, const char* yaml)
+  {
+    rviz::Config config;
+    rviz::YamlConfigReader reader;
+    reader.readString(config, yaml);
+    EXPECT_FALSE(reader.error()) << reader.errorMessage().toStdString();
+    rviz.manager()->load(config);
+    rviz::DisplayGroup* root = rviz.manager()->getRootDisplayGroup();
+    return root->numDisplays() > 0 ? root->getDisplayAt(0) : nullptr;
+  }
+};
+}  // namespace
+
+TEST_F(StopZoneConfigTest, PropertiesAreSavedAndLoaded)
+{
+  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
+  ASSERT_NE(d, nullptr);
+  rviz::Property* zone = d->subProp("Stop zone");
+  const std::map<std::string, QVariant> values = {
+      {"Odometry topic", "/robot/odom"}, {"Deceleration", 1.25}, {"Reaction time", 0.45}, {"Style", "Hatched"},
+      {"Color", QColor(10, 20, 30)},     {"Alpha", 0.7},         {"Width", 0.55}};
+  for (const auto& v : values)
+  {
+    zone->subProp(QString::fromStdString(v.first))->setValue(v.second);
+  }
+  zone->setValue(true);
+  std::map<std::string, std::string> shown;
+  for (const auto& v : values)
+  {
+    shown[v.first] = zone->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString();
+  }
+  QTemporaryDir dir;
+  const QString file = dir.path() + "/saved.rviz";
+  rviz::Config saved;
+  rviz_->manager()->save(saved);
+  rviz::YamlConfigWriter().writeFile(saved, file);
+  rviz_.reset();
+
+  RvizInstance fresh(320, 240);
+  rviz::Config loaded;
+  rviz::YamlConfigReader reader;
+  reader.readFile(loaded, file);
+  ASSERT_FALSE(reader.error());
+  fresh.manager()->load(loaded);
+  ASSERT_EQ(fresh.manager()->getRootDisplayGroup()->numDisplays(), 1);
+  rviz::Property* again = fresh.manager()->getRootDisplayGroup()->getDisplayAt(0)->subProp("Stop zone");
+  EXPECT_TRUE(again->getValue().toBool()) << "the group's switch";
+  for (const auto& v : shown)
+  {
+    EXPECT_EQ(again->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString(), v.second) << v.first;
+  }
+  EXPECT_EQ(shown["Style"], "Hatched");
+  EXPECT_EQ(shown["Odometry topic"], "/robot/odom");
+}
+
+TEST_F(StopZoneConfigTest, AConfigWithoutTheGroupLoadsWithItOff)
+{
+  rviz::Display* d = loadYaml(*rviz_, R"(
+Displays:
+  - Class: rviz_projector/ProjectedPath
+    Name: Saved before the stop zone existed
+    Enabled: true
+    Topic: /test/plan
+    Horizon:
+      Value: true
+      Length: 2
+)");
+  ASSERT_NE(d, nullptr);
+  EXPECT_FALSE(d->subProp("Stop zone")->getValue().toBool());
+  EXPECT_NEAR(d->subProp("Stop zone")->subProp("Deceleration")->getValue().toDouble(), 0.5, 1e-6);
+  EXPECT_NEAR(d->subProp("Stop zone")->subProp("Reaction time")->getValue().toDouble(), 0.3, 1e-6);
+  EXPECT_EQ(d->subProp("Stop zone")->subProp("Style")->getValue().toString().toStdString(), "Filled");
+  spinFor(0.2);  // statuses settle (nothing to wait for: the absence of a status is the verdict)
+  EXPECT_FALSE(statusOf(d, "Stop zone").present);
+  EXPECT_FALSE(statusOf(d, "Config").present) << statusOf(d, "Config").text.toStdString();
+}
+
+TEST_F(StopZoneConfigTest, UnusableValuesAreReplacedAndReported)
+{
+  rviz::Display* d = loadYaml(*rviz_, R"(
+Displays:
+  - Class: rviz_projector/ProjectedPath
+    Name: Bad stop zone
+    Enabled: true
+    Topic: /test/plan
+    Stop zone:
+      Value: true
+      Deceleration: -2
+      Reaction time: .nan
+      Width: abc
+      Style: Zigzag
+)");
+  ASSERT_NE(d, nullptr);
+  rviz::Property* zone = d->subProp("Stop zone");
+  EXPECT_TRUE(zone->getValue().toBool());
+  EXPECT_GT(zone->subProp("Deceleration")->getValue().toDouble(), 0.0);
+  EXPECT_EQ(zone->subProp("Style")->getValue().toString().toStdString(), "Filled");
+  const Status s = statusOf(d, "Config");
+  ASSERT_TRUE(s.present);
+  for (const char* name : {"Deceleration: '-2'", "Reaction time", "Width: 'abc'", "Style: 'Zigzag' -> Filled"})
+  {
+    EXPECT_NE(s.text.indexOf(name), -1) << name << " missing in: " << s.text.toStdString();
+  }
+}
