@@ -317,6 +317,8 @@ TEST_F(ProjectorCameraTest, PixelAccuracyThroughAWideAngleLensWithBinningAndRegi
 // the image and draws the ideal render, cleared to the background): nothing of an earlier frame
 // may stay, not even in the image's edge rows and columns. A floor disc far larger than the view
 // lights every pixel; moved out of view, every image pixel must be the black background again.
+// Then lit again, and the projector's pose lost (its frame unknown): the mesh is not drawn and the
+// window must be blanked all the same.
 TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
 {
   const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
@@ -329,6 +331,7 @@ TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
   ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
   ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
   auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
+  auto isBlack = [](QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; };
   auto count = [](const QImage& image, const std::function<bool(QRgb)>& pred) {
     int n = 0;
     for (int y = 0; y < image.height(); ++y)
@@ -340,31 +343,44 @@ TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
     }
     return n;
   };
-  const QImage lit = imagePart(grabWhen([&](const QImage& f) {
-                                 const QImage image = imagePart(f, oracle);
-                                 return !image.isNull() && count(image, isGreen) == image.width() * image.height();
-                               }),
-                               oracle);
+  // The image part of the window once every pixel is `pred` (or the last grab after the timeout).
+  auto imageWhenAll = [&](const std::function<bool(QRgb)>& pred) {
+    return imagePart(grabWhen([&](const QImage& f) {
+                       const QImage image = imagePart(f, oracle);
+                       return !image.isNull() && count(image, pred) == image.width() * image.height();
+                     }),
+                     oracle);
+  };
+  auto moveDisc = [&](double x) {
+    nav_msgs::Path path;
+    path.header.frame_id = "map";
+    geometry_msgs::PoseStamped pose;
+    pose.header = path.header;
+    pose.pose.position.x = x;
+    pose.pose.position.y = centre.y;
+    pose.pose.orientation.w = 1;
+    path.poses.push_back(pose);
+    target_pubs_.back().publish(path);
+  };
+
+  const QImage lit = imageWhenAll(isGreen);
   ASSERT_FALSE(lit.isNull());
   ASSERT_EQ(count(lit, isGreen), lit.width() * lit.height()) << "the disc lights every image pixel";
 
-  nav_msgs::Path away;
-  away.header.frame_id = "map";
-  geometry_msgs::PoseStamped pose;
-  pose.header = away.header;
-  pose.pose.position.x = centre.x + 1000.0;
-  pose.pose.position.y = centre.y;
-  pose.pose.orientation.w = 1;
-  away.poses.push_back(pose);
-  target_pubs_.back().publish(away);
-  auto isBlack = [](QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; };
-  const QImage dark = imagePart(grabWhen([&](const QImage& f) {
-                                  const QImage image = imagePart(f, oracle);
-                                  return !image.isNull() && count(image, isBlack) == image.width() * image.height();
-                                }),
-                                oracle);
+  moveDisc(centre.x + 1000.0);
+  const QImage dark = imageWhenAll(isBlack);
   ASSERT_FALSE(dark.isNull());
   EXPECT_EQ(count(dark, isBlack), dark.width() * dark.height())
       << "pixels left from the earlier frame: " << dark.width() * dark.height() - count(dark, isBlack)
       << " (first row " << count(dark.copy(0, 0, dark.width(), 1), isBlack) << " of " << dark.width() << " black)";
+
+  moveDisc(centre.x);
+  const QImage lit_again = imageWhenAll(isGreen);
+  ASSERT_EQ(count(lit_again, isGreen), lit_again.width() * lit_again.height()) << "lit again";
+  projector_->subProp("Frame")->setValue("rviz_projector_test_unknown_frame");
+  const QImage no_pose = imageWhenAll(isBlack);
+  ASSERT_FALSE(no_pose.isNull());
+  EXPECT_EQ(count(no_pose, isBlack), no_pose.width() * no_pose.height())
+      << "without a pose the window is blanked: " << no_pose.width() * no_pose.height() - count(no_pose, isBlack)
+      << " pixels left from the earlier frame";
 }
