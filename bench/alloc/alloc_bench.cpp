@@ -17,8 +17,9 @@
 //   same-scene-warped, driving-warped  (issue 24) the same through a wide-angle lens (k1 = -0.2,
 //                k2 = 0.05): the ideal view rendered to a texture and warped into the window
 // and the process RSS before and after the N frames of each, and the wall time of the measured
-// call per frame (median, 95th percentile): the warp's cost is the warped row minus the same row
-// without D, in the same run (the counting allocator's overhead is in both).
+// call per frame (median, 95th percentile) and its CPU time (median; the whole process: llvmpipe
+// shades on threads of its own): the warp's cost is the warped row minus the same row without D,
+// in the same run (the counting allocator's overhead is in both).
 //
 // Run by scripts/bench --alloc (a ROS master and an X server; the two-screen Xorg dummy server
 // puts the projector window full screen on its own 1280x800 screen).
@@ -28,6 +29,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cerrno>
 #include <csignal>
 #include <cmath>
@@ -219,8 +221,18 @@ struct Row
   std::uint64_t rendered = 0;
   Counted total;
   double rss_before = 0, rss_after = 0;
-  std::vector<double> ms;  // wall time of each measured call
+  std::vector<double> ms;      // wall time of each measured call
+  std::vector<double> cpu_ms;  // CPU time of the process (every thread: the GL driver's too)
 };
+
+// CPU time of the whole process, ms: Mesa's llvmpipe shades on threads of its own, and the main
+// thread waits for them; on a shared machine this varies far less with the load than wall time.
+double processCpuMs()
+{
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
 
 double percentile(std::vector<double> values, double q)
 {
@@ -234,10 +246,10 @@ double percentile(std::vector<double> values, double q)
 
 void print(const Row& r)
 {
-  std::printf("%-18s %7d %9llu %12.2f %12.1f %10.1f %10.1f %+9.2f %9.3f %9.3f\n", r.name.c_str(), r.frames,
+  std::printf("%-18s %7d %9llu %12.2f %12.1f %10.1f %10.1f %+9.2f %9.3f %9.3f %9.3f\n", r.name.c_str(), r.frames,
               static_cast<unsigned long long>(r.rendered), static_cast<double>(r.total.allocations) / r.frames,
               static_cast<double>(r.total.bytes) / r.frames, r.rss_before, r.rss_after, r.rss_after - r.rss_before,
-              percentile(r.ms, 0.5), percentile(r.ms, 0.95));
+              percentile(r.ms, 0.5), percentile(r.ms, 0.95), percentile(r.cpu_ms, 0.5));
   std::fflush(stdout);
 }
 }  // namespace
@@ -319,8 +331,8 @@ int main(int argc, char** argv)
   std::printf("# output window %ux%u%s, %d frames per row after %d warm-up frames\n", rw->getWidth(),
               rw->getHeight(), projector->outputWindow()->isFullScreenOn() ? " full screen" : " windowed", frames,
               warmup);
-  std::printf("%-18s %7s %9s %12s %12s %10s %10s %9s %9s %9s\n", "scenario", "frames", "rendered", "allocs/frame",
-              "bytes/frame", "RSS0 MiB", "RSS1 MiB", "dRSS MiB", "ms med", "ms p95");
+  std::printf("%-18s %7s %9s %12s %12s %10s %10s %9s %9s %9s %9s\n", "scenario", "frames", "rendered",
+              "allocs/frame", "bytes/frame", "RSS0 MiB", "RSS1 MiB", "dRSS MiB", "ms med", "ms p95", "cpu med");
 
   // One scenario: `before` runs uncounted before each frame (events, tf), `frame` is counted.
   auto run = [&](const std::string& name, auto before, auto frame) {
@@ -340,7 +352,9 @@ int main(int argc, char** argv)
       before(warmup + i);
       const std::uint64_t r0 = projector->framesRendered();
       const auto t0 = std::chrono::steady_clock::now();
+      const double cpu0 = processCpuMs();
       const Counted c = counted(frame);
+      row.cpu_ms.push_back(processCpuMs() - cpu0);
       row.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       row.rendered += projector->framesRendered() - r0;
       row.total.allocations += c.allocations;

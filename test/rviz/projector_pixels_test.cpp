@@ -11,11 +11,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 #include <QColor>
 #include <QGuiApplication>
 #include <QScreen>
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Path.h>
 #include <rviz/display.h>
 
 #include "rviz_projector/displays/projector_camera_display.h"
@@ -308,4 +311,76 @@ TEST_F(ProjectorCameraTest, PixelAccuracyThroughAWideAngleLensWithBinningAndRegi
   const double worst = pixelAccuracy(info, down, {{240, 150}, {30, 25}, {450, 30}, {455, 275}, {25, 280}});
   std::printf("wide lens, ROI 960x600+160+100, binning 2x2: max error %.3f px\n", worst);
   EXPECT_LE(worst, kBound);
+}
+
+// Issue 24: under the warp's mesh the window is not cleared first (the mesh covers every pixel of
+// the image and draws the ideal render, cleared to the background): nothing of an earlier frame
+// may stay, not even in the image's edge rows and columns. A floor disc far larger than the view
+// lights every pixel; moved out of view, every image pixel must be the black background again.
+// Then lit again, and the projector's pose lost (its frame unknown): the mesh is not drawn and the
+// window must be blanked all the same.
+TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
+{
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
+  const PixelOracle oracle(info, down);
+  mount(down);
+  const Vec2 centre = oracle.floorPoint({640, 400});
+  addTarget(centre, 200.0);
+  info_pub_.publish(info);
+  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
+  auto isBlack = [](QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; };
+  auto count = [](const QImage& image, const std::function<bool(QRgb)>& pred) {
+    int n = 0;
+    for (int y = 0; y < image.height(); ++y)
+    {
+      for (int x = 0; x < image.width(); ++x)
+      {
+        n += pred(image.pixel(x, y)) ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  // The image part of the window once every pixel is `pred` (or the last grab after the timeout).
+  auto imageWhenAll = [&](const std::function<bool(QRgb)>& pred) {
+    return imagePart(grabWhen([&](const QImage& f) {
+                       const QImage image = imagePart(f, oracle);
+                       return !image.isNull() && count(image, pred) == image.width() * image.height();
+                     }),
+                     oracle);
+  };
+  auto moveDisc = [&](double x) {
+    nav_msgs::Path path;
+    path.header.frame_id = "map";
+    geometry_msgs::PoseStamped pose;
+    pose.header = path.header;
+    pose.pose.position.x = x;
+    pose.pose.position.y = centre.y;
+    pose.pose.orientation.w = 1;
+    path.poses.push_back(pose);
+    target_pubs_.back().publish(path);
+  };
+
+  const QImage lit = imageWhenAll(isGreen);
+  ASSERT_FALSE(lit.isNull());
+  ASSERT_EQ(count(lit, isGreen), lit.width() * lit.height()) << "the disc lights every image pixel";
+
+  moveDisc(centre.x + 1000.0);
+  const QImage dark = imageWhenAll(isBlack);
+  ASSERT_FALSE(dark.isNull());
+  EXPECT_EQ(count(dark, isBlack), dark.width() * dark.height())
+      << "pixels left from the earlier frame: " << dark.width() * dark.height() - count(dark, isBlack)
+      << " (first row " << count(dark.copy(0, 0, dark.width(), 1), isBlack) << " of " << dark.width() << " black)";
+
+  moveDisc(centre.x);
+  const QImage lit_again = imageWhenAll(isGreen);
+  ASSERT_EQ(count(lit_again, isGreen), lit_again.width() * lit_again.height()) << "lit again";
+  projector_->subProp("Frame")->setValue("rviz_projector_test_unknown_frame");
+  const QImage no_pose = imageWhenAll(isBlack);
+  ASSERT_FALSE(no_pose.isNull());
+  EXPECT_EQ(count(no_pose, isBlack), no_pose.width() * no_pose.height())
+      << "without a pose the window is blanked: " << no_pose.width() * no_pose.height() - count(no_pose, isBlack)
+      << " pixels left from the earlier frame";
 }
