@@ -414,11 +414,7 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
   {
     return refuse("lit area is not a simple polygon with area");
   }
-  Polygon lit = given;
-  if (signedArea(lit) < 0.0)
-  {
-    std::reverse(lit.begin(), lit.end());  // counter-clockwise from here on
-  }
+  const Polygon& lit = given;  // every test below takes either orientation (Clipper's offset too)
   const double margin = std::isfinite(parameters.margin) ? std::max(0.0, parameters.margin) : 0.0;
   const std::vector<Polygon> safe = shrink(lit, margin);
   if (safe.empty())
@@ -445,7 +441,8 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
   }
   shown_ = true;
 
-  const Band band = bandNear(points, lengths, start, lit, parameters.path_clearance);
+  const double drawn_from = std::isfinite(input.drawn_from) ? std::clamp(input.drawn_from, 0.0, total) : 0.0;
+  const Band band = bandNear(points, lengths, drawn_from, lit, parameters.path_clearance);
   const double chord = parameters.chord;
   const Vec2 forward{std::cos(input.heading), std::sin(input.heading)};
   const double path_heading = headingAt(points, lengths, start, chord);

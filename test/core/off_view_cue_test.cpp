@@ -96,6 +96,13 @@ TEST(OffViewCue, PathStraightAheadIsVisible)
   EXPECT_NEAR(r.visible_fraction, 2.0 / 3.0, 1e-9);
   EXPECT_TRUE(r.triangles.empty());
   EXPECT_EQ(r.reason, "path visible");
+  // The window starts at the robot's place on the path: path from (-1, 0), robot 1 m along it at the
+  // origin: the same 2/3. Judged from the path's first point instead, [-1, 0.5] would hold 0.2 m
+  // lit (0.133: a cue).
+  Case behind = makeCase({{-1, 0}, {3, 0}});
+  behind.input.start = 1.0;
+  EXPECT_EQ(cue.build(behind.points, behind.lengths, behind.input, OffViewParameters()).kind, OffViewKind::None);
+  EXPECT_NEAR(cue.result().visible_fraction, 2.0 / 3.0, 1e-9);
 }
 
 TEST(OffViewCue, PathTurningLeftBeforeTheLitAreaGetsAnArrowOnTheLeftEdge)
@@ -128,12 +135,13 @@ TEST(OffViewCue, PathTurningLeftBeforeTheLitAreaGetsAnArrowOnTheLeftEdge)
 
 TEST(OffViewCue, ArrowWhereThePathLeavesShiftsAwayFromTheVisiblePath)
 {
-  // Look-ahead 3 m. (0,0) -> (0.4,0) -> (0.4,-3): inside 0.1 m (x 0.3..0.4) + 0.4 m (y 0..-0.4) =
-  // 0.5 of 3 -> 1/6. It last leaves at (0.4, -0.4) (arc 0.8), heading -y. The shrunk area's nearest
+  // Look-ahead 3 m. (0,0) -> (0.4,0) -> (0.4,-1) -> (2.4,-1): inside 0.1 m (x 0.3..0.4) + 0.4 m
+  // (y 0..-0.4) = 0.5 of 3 -> 1/6. It last leaves at (0.4, -0.4) (arc 0.8), heading -y (the
+  // window's end, (2.0, -1) heading +x, is not where it leaves). The shrunk area's nearest
   // point is (0.45, -0.25); there the head's inner corner (x 0.39) lies on the path at x = 0.4. The
   // sideways steps (5 cm, +x first since the left of -y is +x): the inner corner tip.x - 0.06 must be
   // >= 0.4 + 0.1 -> tip.x >= 0.56 -> the third step, 0.45 + 0.15 = 0.6.
-  Case c = makeCase({{0, 0}, {0.4, 0}, {0.4, -3}});
+  Case c = makeCase({{0, 0}, {0.4, 0}, {0.4, -1}, {2.4, -1}});
   OffViewParameters parameters;
   parameters.look_ahead = 3.0;
   OffViewCue cue;
@@ -201,6 +209,31 @@ TEST(OffViewCue, GoalBehindTurnsInPlaceToTheSideOfTheDifference)
     Case c = makeCase({{0, 0}, {2 * std::cos(a), 2 * std::sin(a)}});
     EXPECT_EQ(cue.build(c.points, c.lengths, c.input, OffViewParameters()).kind, OffViewKind::EdgeArrow);
   }
+}
+
+TEST(OffViewCue, KeepsClearOfThePathThatIsDrawnBehindTheRobot)
+{
+  // The path comes from (0.8, 0), through the lit area, to the robot at the origin (arc 0.8) and on
+  // towards (-2, -0.2): turn in place (right), glyph at the centroid (0.8, 0). When the whole path
+  // is drawn (drawn_from 0), its part behind the robot runs through the glyph's place: the glyph
+  // moves to keep 0.1 m from it. When only the path ahead is drawn (drawn_from = start), the glyph
+  // stays at (0.8, 0).
+  Case c = makeCase({{0.8, 0}, {0, 0}, {-2, -0.2}});
+  c.input.start = 0.8;
+  OffViewCue cue;
+  c.input.drawn_from = 0.0;
+  const OffViewResult whole = cue.build(c.points, c.lengths, c.input, OffViewParameters());
+  EXPECT_EQ(whole.kind, OffViewKind::TurnInPlace);
+  EXPECT_EQ(whole.turn, TurnSide::Right);
+  ASSERT_FALSE(whole.triangles.empty());
+  Case from_start = c;
+  from_start.input.start = 0.0;  // clearanceToPath samples from input.start: the whole path
+  EXPECT_GE(clearanceToPath(from_start, whole.triangles), 0.1 - 1e-3);
+  c.input.drawn_from = 0.8;
+  const OffViewResult ahead = cue.build(c.points, c.lengths, c.input, OffViewParameters());
+  EXPECT_NEAR(ahead.anchor.x, 0.8, 1e-9);
+  EXPECT_NEAR(ahead.anchor.y, 0.0, 1e-9);
+  EXPECT_LT(clearanceToPath(from_start, ahead.triangles), 0.1);  // it covers the part not drawn
 }
 
 TEST(OffViewCue, FinalApproachPointsAtTheDestinationWithItsDistance)

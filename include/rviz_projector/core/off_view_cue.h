@@ -66,6 +66,9 @@ struct OffViewInput
   /// The robot's place on the path, arc length from its first point (locateOnPath(robot), as the
   /// horizon uses it); clamped to the path.
   double start = 0.0;
+  /// Arc length from which the display draws the path's arrows: the horizon's start when the horizon
+  /// is on, else 0 (the whole path is drawn). The cue keeps clear of the path from there on; NaN: 0.
+  double drawn_from = 0.0;
 };
 
 struct OffViewResult
@@ -108,8 +111,8 @@ struct OffViewResult
  *    window's end when it never is inside; the arrow's tip is the point of the shrunk area nearest
  *    the target, pointing along headingAt(target).
  *
- * Clear of the visible path: a cue never comes within path_clearance of the path ahead of the
- * robot (arc >= start). A cue that would is shifted sideways (perpendicular to its direction, in
+ * Clear of the visible path: a cue never comes within path_clearance of the path that is drawn
+ * (arc >= drawn_from). A cue that would is shifted sideways (perpendicular to its direction, in
  * 5 cm steps up to 0.6 m, nearer first, left before right) and then back into the area (10 cm
  * steps up to 0.3 m); then shrunk to 3/4 and 1/2; every vertex must stay inside the lit polygon.
  * If nothing fits, the kind stays but no triangles are drawn and the reason says so.
