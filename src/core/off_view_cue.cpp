@@ -159,10 +159,26 @@ std::vector<Polygon> shrink(const Polygon& polygon, double margin)
     path.push_back({ClipperLib::cInt(std::llround((p.x - origin.x) * kScale)),
                     ClipperLib::cInt(std::llround((p.y - origin.y) * kScale))});
   }
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const Vec2& p : polygon)
+  {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  if (2.0 * margin >= std::min(x1 - x0, y1 - y0))
+  {
+    return {};  // nothing is left (and a huge offset would leave Clipper's integer range)
+  }
   ClipperLib::ClipperOffset offset;
   offset.AddPath(path, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
   ClipperLib::Paths solution;
-  offset.Execute(solution, -margin * kScale);
+  try
+  {
+    offset.Execute(solution, -margin * kScale);
+  }
+  catch (const ClipperLib::clipperException&)
+  {
+    return {};  // cannot happen within 1e6 m and the margin check above; refused rather than thrown
+  }
   std::vector<Polygon> areas;
   for (const ClipperLib::Path& piece : solution)
   {
