@@ -259,6 +259,7 @@ struct Band
 {
   std::vector<Vec2> a, b;
   std::vector<double> clearance;
+  mutable std::vector<std::size_t> near_;  // scratch of overlaps()
 
   void add(const Vec2& from, const Vec2& to, double keep)
   {
@@ -269,12 +270,27 @@ struct Band
 
   bool overlaps(const std::vector<Vec2>& triangles) const
   {
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const Vec2& v : triangles)
+    {
+      x0 = std::min(x0, v.x), y0 = std::min(y0, v.y), x1 = std::max(x1, v.x), y1 = std::max(y1, v.y);
+    }
+    near_.clear();  // the segments that can come within their clearance of the cue's box
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      const double keep = clearance[i];
+      if (std::max(a[i].x, b[i].x) >= x0 - keep && std::min(a[i].x, b[i].x) <= x1 + keep &&
+          std::max(a[i].y, b[i].y) >= y0 - keep && std::min(a[i].y, b[i].y) <= y1 + keep)
+      {
+        near_.push_back(i);
+      }
+    }
     for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
     {
       const Vec2& p = triangles[t];
       const Vec2& q = triangles[t + 1];
       const Vec2& r = triangles[t + 2];
-      for (std::size_t i = 0; i < a.size(); ++i)
+      for (const std::size_t i : near_)
       {
         const double keep = clearance[i];
         if (inTriangle(a[i], p, q, r) || segmentDistance(a[i], b[i], p, q) < keep ||
