@@ -60,7 +60,8 @@ struct OffViewInput
   /// The lit area on the floor: a simple polygon with area, either orientation (FloorFootprint's
   /// outline() is clockwise).
   std::vector<Vec2> lit;
-  /// The robot's floor position (in the path's frame) and heading (radians).
+  /// The robot's floor position (in the path's frame; only checked to be finite: the cue works from
+  /// `start`) and heading (radians: the turn-in-place test and the label's reading direction).
   Vec2 robot;
   double heading = 0.0;
   /// The robot's place on the path, arc length from its first point (locateOnPath(robot), as the
