@@ -1,8 +1,9 @@
 // libFuzzer target: the floor shapes a display turns into triangles: ArrowOutline, ArrowSolid,
-// DiscOutline, FloorGrid and SweptCorridor, with positions and sizes from the fuzz input.
+// DiscOutline, FloorGrid, SweptCorridor and OffViewCue, with positions and sizes from the fuzz input.
 // Invariants: no crash or UB, the documented vertex counts, finite vertices (and unit normals) for
 // sane finite inputs, an arrow contains its tip, a disc its centre, a grid stays within kMaxLines
-// lines, and a refused corridor footprint draws nothing. Outlines are closed and simple: the
+// lines, a refused corridor footprint draws nothing, and an off-view cue has a reason, draws
+// nothing when None and only inside the lit polygon otherwise. Outlines are closed and simple: the
 // arrow's outline is counter-clockwise, its triangles use only its corners and cover exactly its
 // area, and no two non-adjacent edges meet; the disc's rim closes on itself and its chords do not
 // cross (a plain O(n^2) check of every pair of edges).
@@ -16,6 +17,7 @@
 #include "rviz_projector/core/arrow_solid.h"
 #include "rviz_projector/core/disc_outline.h"
 #include "rviz_projector/core/floor_grid.h"
+#include "rviz_projector/core/off_view_cue.h"
 #include "rviz_projector/core/path_location.h"
 #include "rviz_projector/core/swept_corridor.h"
 
@@ -309,6 +311,77 @@ void corridors(Input& in)
     for (const Vec2& v : corridor.edges()) RP_FUZZ_CHECK(isFinite(v));
   }
 }
+/// Whether p is inside the polygon or within `tolerance` of its boundary (either orientation).
+bool insideOrNear(const std::vector<Vec2>& polygon, const Vec2& p, double tolerance)
+{
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+  {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+    {
+      in = !in;
+    }
+    const Vec2 ab = b - a;
+    const double l2 = dot(ab, ab);
+    const double t = l2 > 0.0 ? std::min(1.0, std::max(0.0, dot(p - a, ab) / l2)) : 0.0;
+    if (distance(p, a + ab * t) <= tolerance)
+    {
+      return true;
+    }
+  }
+  return in;
+}
+
+void offViewCues(Input& in)
+{
+  std::vector<Vec2> points;
+  const int poses = in.integer<int>(0, 30);
+  for (int i = 0; i < poses; ++i)
+  {
+    points.push_back(points.empty() || in.boolean() ? in.vec2(3.0) : points.back() + in.vec2(0.5));
+  }
+  std::vector<double> lengths;
+  accumulateArcLengths(points, lengths);
+  OffViewInput input;
+  const int corners = in.integer<int>(0, 12);
+  for (int i = 0; i < corners; ++i)
+  {
+    input.lit.push_back(in.vec2(2.0));
+  }
+  input.robot = in.vec2(2.0);
+  input.heading = in.number(4.0);
+  input.start = in.number(5.0);
+  input.drawn_from = in.number(5.0);
+  OffViewParameters parameters;
+  parameters.look_ahead = in.size(3.0);
+  parameters.margin = in.size(0.3);
+  parameters.arrow_length = in.size(0.5);
+  parameters.arrow_width = in.size(0.3);
+  parameters.show_below = in.number(1.0);
+  parameters.hide_above = in.number(1.0);
+  parameters.path_clearance = in.size(0.3);
+  parameters.final_approach = in.size(2.0);
+  OffViewCue cue;
+  for (int call = 0; call < 2; ++call)  // twice: the hysteresis state must not break anything
+  {
+    const OffViewResult& r = cue.build(points, lengths, input, parameters);
+    RP_FUZZ_CHECK(r.triangles.size() % 3u == 0u);
+    RP_FUZZ_CHECK(!r.reason.empty());
+    RP_FUZZ_CHECK((r.kind != OffViewKind::None || r.triangles.empty()) && "None drew something");
+    RP_FUZZ_CHECK((r.kind == OffViewKind::None) == !cue.shown());
+    if (r.kind != OffViewKind::None)
+    {
+      RP_FUZZ_CHECK(r.visible_fraction >= 0.0 && r.visible_fraction <= 1.0 + 1e-9);
+      for (const Vec2& v : r.triangles)
+      {
+        RP_FUZZ_CHECK(isFinite(v));
+        RP_FUZZ_CHECK(insideOrNear(input.lit, v, 1e-6) && "a cue vertex outside the lit area");
+      }
+    }
+  }
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -316,11 +389,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Input in(data, size);
   while (!in.empty())
   {
-    switch (in.integer<int>(0, 3))
+    switch (in.integer<int>(0, 4))
     {
       case 0: arrows(in); break;
       case 1: discs(in); break;
       case 2: corridors(in); break;
+      case 3: offViewCues(in); break;
       default: grids(in); break;
     }
   }

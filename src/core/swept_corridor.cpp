@@ -303,9 +303,11 @@ public:
   /// the two triangles either side of the crossing.
   void addQuad(const Vec2& a0, const Vec2& b0, const Vec2& a1, const Vec2& b1)
   {
-    if (segmentsCross(a0, b0, a1, b1))
+    // Parallel edges can pass segmentsCross by rounding (its four signs from ~1e-17 products) and
+    // put the crossing at infinity: only a crossing within the edge counts (found by fuzz_shapes).
+    const double t = segmentsCross(a0, b0, a1, b1) ? cross(a1 - a0, b1 - a1) / cross(b0 - a0, b1 - a1) : -1.0;
+    if (t >= 0.0 && t <= 1.0)
     {
-      const double t = cross(a1 - a0, b1 - a1) / cross(b0 - a0, b1 - a1);
       const Vec2 x = a0 + (b0 - a0) * t;
       add(a0, x, a1);
       add(b0, x, b1);

@@ -13,8 +13,11 @@
 #include "rviz_projector/core/arrow_solid.h"
 #include "rviz_projector/core/floor_footprint.h"
 #include "rviz_projector/core/floor_grid.h"
+#include "rviz_projector/core/off_view_cue.h"
 #include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/pinhole_model.h"
+#include "rviz_projector/core/swept_corridor.h"
+#include "rviz_projector/core/path_location.h"
 
 using namespace rviz_projector;
 
@@ -166,4 +169,49 @@ TEST(CoreRegression, FootprintOfAZeroQuaternionPoseIsFinite)
   }
   const FloorFootprint nan_pose(lens, RigidTransform::fromQuaternion(kNan, 0, 0, 1, Vec3{0, 0, 1.2}), 10.0);
   EXPECT_TRUE(isFinite(nan_pose.origin()));
+}
+
+// fuzz_shapes (known-bug-2-corridor-parallel-edges): a footprint edge at two places, parallel,
+// passed segmentsCross by rounding; its "crossing" was at infinity and Clipper threw "Coordinate
+// outside allowed range", ending the process.
+TEST(CoreRegression, CorridorEdgeParallelToItsNextPlaceDoesNotThrow)
+{
+  const std::vector<Vec2> points{{-0.0, -0.0}, {-0.0, -0.0}, {-0.0, -0.0}, {-0.0, -0.0}, {-0.0, -0.0}, {-0.0, -0.0},
+                                 {-0.0, -0.0}, {-0.0, -0.0}, {20, 20}, {20, 20},
+                                 {19.982352941176469, 19.982352941176469}, {19.964701574128668, 20.28235294117647},
+                                 {20, -0.0}, {20, -0.0}, {20, -0.0}, {-0.0, 2.8177690084182086e-202},
+                                 {-0.0, 2.8177690084182086e-202}, {-0.0, 2.8177690084182086e-202},
+                                 {-0.0, 2.8177690084182086e-202}, {-0.0, 2.8177690084182086e-202},
+                                 {-0.0, 2.8177690084182086e-202}, {0.29999999999999999, 0.29999999999999999}};
+  const std::vector<Vec2> footprint{{1, 1}, {0.99586397058823528, -0.058823529411764719}, {-0.058823529411764719, 1}};
+  std::vector<double> lengths;
+  accumulateArcLengths(points, lengths);
+  CorridorParameters parameters;
+  parameters.length = 5.0;
+  parameters.edge_width = 0.099997211531096836;
+  SweptCorridor corridor;
+  EXPECT_NO_THROW(corridor.build(points, lengths, 0.0, footprint, parameters));
+  EXPECT_FALSE(corridor.band().empty());
+  for (const Vec2& v : corridor.band())
+  {
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y));
+  }
+}
+
+// fuzz_shapes: a huge margin (1e300 m) made Clipper's offset leave its integer range and throw.
+TEST(CoreRegression, OffViewCueWithAHugeMarginIsRefusedNotThrown)
+{
+  const std::vector<Vec2> points{{0, 0}, {0.2, 0}, {0.2, 2}};
+  std::vector<double> lengths;
+  accumulateArcLengths(points, lengths);
+  OffViewInput input;
+  input.lit = {{0.3, 0.4}, {1.3, 0.4}, {1.3, -0.4}, {0.3, -0.4}};
+  OffViewParameters parameters;
+  OffViewCue cue;
+  for (const double margin : {1e300, 4e13, 0.4})
+  {
+    parameters.margin = margin;
+    EXPECT_NO_THROW(cue.build(points, lengths, input, parameters));
+    EXPECT_EQ(cue.result().reason, "lit area too small for the margin");
+  }
 }
