@@ -97,6 +97,28 @@ void CueDrawing::build(const std::vector<Vec2>& path, const SpacedPath& spaced, 
       }
     }
   }
+  if (settings.corridor && input.goal.arrows && path.size() >= 2)
+  {
+    CorridorKey key{path.data(), path.size(), path.front(), path.back(), robot_arc,
+                    settings.corridor_radius, settings.corridor_footprint, settings.corridor_parameters};
+    if (!(key == corridor_key_))
+    {
+      if (settings.corridor_radius > 0.0)
+      {
+        corridor_.buildRound(path, lengths_, robot_arc, settings.corridor_radius, settings.corridor_parameters);
+      }
+      else
+      {
+        corridor_.build(path, lengths_, robot_arc, settings.corridor_footprint, settings.corridor_parameters);
+      }
+      corridor_key_ = std::move(key);
+    }
+  }
+  else if (corridor_key_.path != nullptr || !corridor_.band().empty())
+  {
+    corridor_.build({}, {}, 0.0, {}, CorridorParameters());  // empty
+    corridor_key_ = CorridorKey();
+  }
   if (settings.stop_zone && input.goal.arrows)
   {
     stop_zone_.build(path, lengths_, robot_arc, input.speed, settings.stop);
@@ -114,5 +136,20 @@ void CueDrawing::build(const std::vector<Vec2>& path, const SpacedPath& spaced, 
 std::size_t CueDrawing::arrowsDrawn() const
 {
   return arrows_.size() / ArrowOutline::kVerticesPerArrow;
+}
+}  // namespace rviz_projector
+
+namespace rviz_projector
+{
+bool CueDrawing::CorridorKey::operator==(const CorridorKey& o) const
+{
+  auto same = [](const Vec2& a, const Vec2& b) { return a.x == b.x && a.y == b.y; };
+  const CorridorParameters& p = parameters;
+  const CorridorParameters& q = o.parameters;
+  return path == o.path && path_size == o.path_size && same(first, o.first) && same(last, o.last) &&
+         robot_arc == o.robot_arc && radius == o.radius && footprint.size() == o.footprint.size() &&
+         std::equal(footprint.begin(), footprint.end(), o.footprint.begin(), same) && p.length == q.length &&
+         p.edge_width == q.edge_width && p.step == q.step && p.turn_step == q.turn_step &&
+         p.heading_chord == q.heading_chord;
 }
 }  // namespace rviz_projector

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "rviz_projector/core/path_location.h"
+#include "rviz_projector/core/polygon_triangulation.h"
 
 namespace rviz_projector
 {
@@ -34,45 +36,6 @@ double signedArea(const std::vector<Vec2>& polygon)
     twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
   }
   return 0.5 * twice;
-}
-
-/// Ear clipping of a simple polygon (counter-clockwise) into triangles; a footprint has few vertices.
-std::vector<Vec2> triangulate(std::vector<Vec2> polygon)
-{
-  std::vector<Vec2> triangles;
-  auto inside = [](const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-    return cross(b - a, p - a) > 0 && cross(c - b, p - b) > 0 && cross(a - c, p - c) > 0;
-  };
-  while (polygon.size() > 3)
-  {
-    bool clipped = false;
-    for (std::size_t i = 0; i < polygon.size() && !clipped; ++i)
-    {
-      const Vec2& a = polygon[(i + polygon.size() - 1) % polygon.size()];
-      const Vec2& b = polygon[i];
-      const Vec2& c = polygon[(i + 1) % polygon.size()];
-      if (cross(b - a, c - b) <= 0)
-      {
-        continue;  // reflex or flat: not an ear
-      }
-      const bool empty = std::none_of(polygon.begin(), polygon.end(), [&](const Vec2& p) { return inside(p, a, b, c); });
-      if (empty)
-      {
-        triangles.insert(triangles.end(), {a, b, c});
-        polygon.erase(polygon.begin() + std::ptrdiff_t(i));
-        clipped = true;
-      }
-    }
-    if (!clipped)
-    {
-      break;  // numerically degenerate rest: leave it out rather than loop
-    }
-  }
-  if (polygon.size() == 3)
-  {
-    triangles.insert(triangles.end(), polygon.begin(), polygon.end());
-  }
-  return triangles;
 }
 
 using Placement = SweptCorridor::Placement;
@@ -177,6 +140,81 @@ std::vector<std::vector<Vec2>> fromClipper(ClipperLib::Paths paths, const Vec2& 
 }
 }  // namespace
 
+std::vector<Vec2> parseFootprint(const std::string& text, std::string& error)
+{
+  // Numbers and brackets only: "[[x, y], ...]", nested exactly two deep, pairs of numbers.
+  std::vector<Vec2> polygon;
+  std::vector<double> pair;
+  int depth = 0;
+  error.clear();
+  for (std::size_t i = 0; i < text.size() && error.empty();)
+  {
+    const char c = text[i];
+    if (c == '[')
+    {
+      if (++depth > 2)
+      {
+        error = "more than two levels of brackets";
+      }
+      pair.clear();
+      ++i;
+    }
+    else if (c == ']')
+    {
+      if (depth == 2)
+      {
+        if (pair.size() != 2)
+        {
+          error = "point " + std::to_string(polygon.size() + 1) + " has " + std::to_string(pair.size()) +
+                  " numbers (x and y are needed)";
+        }
+        else
+        {
+          polygon.push_back({pair[0], pair[1]});
+        }
+      }
+      if (--depth < 0)
+      {
+        error = "a ']' without its '['";
+      }
+      ++i;
+    }
+    else if (c == ',' || c == ' ' || c == '\t' || c == '\n')
+    {
+      ++i;
+    }
+    else
+    {
+      const char* begin = text.c_str() + i;
+      char* end = nullptr;
+      const double value = std::strtod(begin, &end);
+      if (end == begin || depth != 2)
+      {
+        error = "unexpected '" + text.substr(i, 12) + "'";
+      }
+      else
+      {
+        pair.push_back(value);
+        i += std::size_t(end - begin);
+      }
+    }
+  }
+  if (error.empty() && depth != 0)
+  {
+    error = "a '[' without its ']'";
+  }
+  if (error.empty() && polygon.empty())
+  {
+    error = "no points";
+  }
+  if (!error.empty())
+  {
+    error = "cannot read the footprint \"" + text + "\": " + error + " (write [[x, y], [x, y], ...] in metres)";
+    polygon.clear();
+  }
+  return polygon;
+}
+
 std::string footprintProblem(const std::vector<Vec2>& footprint)
 {
   if (footprint.size() < 3)
@@ -257,23 +295,23 @@ std::vector<Placement> placementsAlong(const std::vector<Vec2>& points, const st
   return placements;
 }
 
-/// Pieces of the swept area as counter-clockwise triangles, both for Clipper and for the band.
+/// Pieces of the swept area, counter-clockwise, for Clipper's union.
 class Pieces
 {
 public:
-  Pieces(const Vec2& origin, std::vector<Vec2>& band) : origin_(origin), band_(band) {}
+  explicit Pieces(const Vec2& origin) : origin_(origin) {}
 
-  /// A triangle, to the band and to the union.
+  /// A triangle (nothing when it has no area).
   void add(const Vec2& a, const Vec2& b, const Vec2& c)  // corridor coordinates
   {
-    if (addToBand(a, b, c))
+    if (std::abs(cross(b - a, c - a)) >= 1e-14)
     {
-      addToUnion({a, b, c});
+      addPolygon({a, b, c});
     }
   }
 
-  /// A simple polygon to the union only (its triangles go to the band separately).
-  void addToUnion(const std::vector<Vec2>& polygon)
+  /// A simple polygon, in either orientation.
+  void addPolygon(const std::vector<Vec2>& polygon)
   {
     ClipperLib::Path piece;
     for (const Vec2& v : polygon)
@@ -287,20 +325,8 @@ public:
     paths_.push_back(std::move(piece));
   }
 
-  /// A triangle to the band; false when it has no area.
-  bool addToBand(const Vec2& a, const Vec2& b, const Vec2& c)
-  {
-    if (std::abs(cross(b - a, c - a)) < 1e-14)
-    {
-      return false;
-    }
-    band_.insert(band_.end(), {a + origin_, b + origin_, c + origin_});
-    return true;
-  }
-
-  /// The quadrilateral a0 b0 b1 a1 between an edge's two places (one piece of the union; the band
-  /// gets it cut along its inner diagonal), or, where the edge turned across its own earlier place,
-  /// the two triangles either side of the crossing.
+  /// The quadrilateral a0 b0 b1 a1 between an edge's two places, or, where the edge turned across
+  /// its own earlier place, the two triangles either side of the crossing.
   void addQuad(const Vec2& a0, const Vec2& b0, const Vec2& a1, const Vec2& b1)
   {
     // Parallel edges can pass segmentsCross by rounding (its four signs from ~1e-17 products) and
@@ -313,13 +339,9 @@ public:
       add(b0, x, b1);
       return;
     }
-    const bool a0_b1_inside = (cross(b0 - a0, b1 - a0) > 0) == (cross(b1 - a0, a1 - a0) > 0);
-    const bool first = a0_b1_inside ? addToBand(a0, b0, b1) : addToBand(a0, b0, a1);
-    const bool second = a0_b1_inside ? addToBand(a0, b1, a1) : addToBand(b0, b1, a1);  // both, always
-    const bool drawn = first || second;
-    if (drawn)
+    if (std::abs(cross(b0 - a0, b1 - a0)) + std::abs(cross(b1 - a0, a1 - a0)) >= 1e-14)
     {
-      addToUnion({a0, b0, b1, a1});
+      addPolygon({a0, b0, b1, a1});
     }
   }
 
@@ -344,7 +366,6 @@ public:
 
 private:
   Vec2 origin_;
-  std::vector<Vec2>& band_;
   ClipperLib::Paths paths_;
 };
 }  // namespace
@@ -352,9 +373,10 @@ private:
 void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
                           const std::vector<Vec2>& footprint_in, const CorridorParameters& parameters)
 {
-  if (!footprintProblem(footprint_in).empty() || !begin(points, lengths, start, parameters))
+  if (!begin(points, lengths, start, parameters) || !footprintProblem(footprint_in).empty())
   {
-    return;
+    placements_.clear();
+    return;  // begin() emptied the last build's output
   }
   std::vector<Vec2> footprint = footprint_in;
   for (const Vec2& v : footprint)
@@ -373,8 +395,7 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
   // neighbouring positions: a point the footprint covers at some moment was inside it at the start,
   // or a leading edge crossed it on the way there. Small steps keep the chords of the corners' arcs short
   // (5 degrees at 2.5 m from the centre of the turn: a sagitta of 0.2 mm).
-  Pieces pieces(origin_, band_);
-  const std::vector<Vec2> triangles = triangulate(footprint);
+  Pieces pieces(origin_);
   for (const Placement* at : {&placements_.front(), &placements_.back()})
   {
     std::vector<Vec2> placed;
@@ -382,11 +403,7 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
     {
       placed.push_back(place(*at, v));
     }
-    pieces.addToUnion(placed);
-    for (std::size_t i = 0; i + 2 < triangles.size(); i += 3)
-    {
-      pieces.addToBand(place(*at, triangles[i]), place(*at, triangles[i + 1]), place(*at, triangles[i + 2]));
-    }
+    pieces.addPolygon(placed);
   }
   for (std::size_t i = 0; i + 1 < placements_.size(); ++i)
   {
@@ -414,34 +431,17 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
 void SweptCorridor::buildRound(const std::vector<Vec2>& points, const std::vector<double>& lengths, double start,
                                double radius, const CorridorParameters& parameters)
 {
-  if (!(radius > 0.0) || !(radius < 1e3) || !begin(points, lengths, start, parameters))
+  if (!begin(points, lengths, start, parameters) || !(radius > 0.0) || !(radius < 1e3))
   {
-    return;
+    placements_.clear();
+    return;  // begin() emptied the last build's output
   }
   // A disc turns into itself: its sweep is the path's points grown by the radius (Clipper's offset,
-  // round ends, arcs within 0.1 mm). The band: the diameter across the path between neighbouring
-  // positions, and the disc at both ends.
-  Pieces pieces(origin_, band_);
+  // round ends, arcs within 0.1 mm).
   ClipperLib::Path centre_line;
   for (const Placement& at : placements_)
   {
     centre_line.push_back(toClipper(at.position));
-  }
-  for (std::size_t i = 0; i + 1 < placements_.size(); ++i)
-  {
-    pieces.addQuad(place(placements_[i], {0, radius}), place(placements_[i], {0, -radius}),
-                   place(placements_[i + 1], {0, radius}), place(placements_[i + 1], {0, -radius}));
-  }
-  const int segments = 48;
-  const double outer = radius / std::cos(M_PI / segments);  // its edges touch the circle
-  for (const Placement* at : {&placements_.front(), &placements_.back()})
-  {
-    for (int k = 0; k < segments; ++k)
-    {
-      const double a0 = 2.0 * M_PI * k / segments, a1 = 2.0 * M_PI * (k + 1) / segments;
-      pieces.add(at->position, at->position + Vec2{std::cos(a0), std::sin(a0)} * outer,
-                 at->position + Vec2{std::cos(a1), std::sin(a1)} * outer);
-    }
   }
   ClipperLib::ClipperOffset offset(2.0, 1e-4 * kScale);
   offset.AddPath(centre_line, ClipperLib::jtRound, ClipperLib::etOpenRound);
@@ -502,6 +502,24 @@ void SweptCorridor::finish(const std::vector<std::vector<Vec2>>& rims, const std
     }
     return line;
   };
+  // The band: each outer rim with the holes inside it, triangulated so that no point is covered twice.
+  for (const std::vector<Vec2>& ring : rims)
+  {
+    if (ring.size() < 3 || !(signedArea(ring) > 1e-4))
+    {
+      continue;
+    }
+    std::vector<std::vector<Vec2>> holes;
+    for (const std::vector<Vec2>& hole : rims)
+    {
+      if (hole.size() >= 3 && signedArea(hole) < -1e-4 && insidePolygon(ring, hole.front()))
+      {
+        holes.push_back(hole);
+      }
+    }
+    const std::vector<Vec2> triangles = triangulatePolygon(ring, holes);
+    band_.insert(band_.end(), triangles.begin(), triangles.end());
+  }
   for (const std::vector<Vec2>& ring : rims)
   {
     // Slivers between the chords of the corners' arcs can leave specks unswept: holes under 1 cm^2

@@ -42,7 +42,7 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
   const GoalCueParameters goal_defaults;
   robot_frame = new rviz::TfFrameProperty(
       "Robot frame", "base_link",
-      "The robot's tf frame: where the horizon starts, where the turn signal is drawn, and whether the robot stands "
+      "The robot's tf frame: where the horizon, the stop zone and the corridor start, where the turn signal is drawn, and whether the robot stands "
       "still (pre-motion warning).",
       display, nullptr, false, SLOT(updateCues()), display);
 

@@ -19,6 +19,7 @@
 #include "rviz_projector/displays/projected_path_display.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
+#include "rviz_projector/displays/corridor_properties.h"
 #include "rviz_projector/displays/stop_zone_properties.h"
 
 namespace rviz_projector
@@ -44,7 +45,7 @@ void ProjectedPathDisplay::checkMarchingMode()
 bool ProjectedPathDisplay::cuesActive() const
 {
   return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_settings_.stop_zone ||
-         cue_source_.subscribed();
+         cue_settings_.corridor || cue_source_.subscribed();
 }
 
 void ProjectedPathDisplay::updateCues()
@@ -52,6 +53,8 @@ void ProjectedPathDisplay::updateCues()
   cue_settings_ = cue_properties_->settings();
   cue_settings_.stop_zone = stop_properties_->enabled->getBool();
   cue_settings_.stop = stop_properties_->parameters();
+  cue_settings_.corridor = corridor_properties_->enabled->getBool();
+  cue_settings_.corridor_parameters = corridor_properties_->parameters();
   cue_source_.setParameters(cue_properties_->goalParameters());
   checkMarchingMode();
   if (!cuesActive() && arrow_mesh_)
@@ -89,6 +92,39 @@ void ProjectedPathDisplay::updateStopZone()
     showCueStatus("Stop zone", stop_source_.status(cueTime().toSec()), stop_status_shown_);
   }
   updateCues();
+}
+
+void ProjectedPathDisplay::updateCorridor()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  corridor_source_.subscribe(update_nh_, corridor_properties_->wantedTopic());
+  corridor_status_shown_ = CueStatus();
+  deleteStatus("Corridor");
+  updateCues();
+}
+
+void ProjectedPathDisplay::takeCorridorFootprint()
+{
+  CorridorFootprint footprint;
+  switch (corridor_properties_->source())
+  {
+    case CorridorProperties::Source::Radius:
+      footprint = CorridorSource::fromRadius(corridor_properties_->radius->getFloat());
+      break;
+    case CorridorProperties::Source::Polygon:
+      footprint = CorridorSource::fromText(corridor_properties_->polygon->getStdString());
+      break;
+    case CorridorProperties::Source::Topic:
+      footprint = corridor_source_.fromTopic(*context_->getTF2BufferPtr(), cue_properties_->robot_frame->getFrameStd());
+      break;
+  }
+  showCueStatus("Corridor", footprint.status, corridor_status_shown_);
+  // Nothing usable: radius 0 and no polygon, which CueDrawing sweeps as nothing.
+  cue_settings_.corridor_radius = footprint.usable() ? footprint.radius : 0.0;
+  cue_settings_.corridor_footprint = footprint.usable() ? std::move(footprint.polygon) : std::vector<Vec2>();
 }
 
 void ProjectedPathDisplay::update(float /*wall_dt*/, float /*ros_dt*/)
@@ -130,6 +166,10 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
                                            cue_properties_->robot_frame->getFrameStd(), cue_settings_.needsRobot());
   showCueStatus("Robot", cue_source_.robotStatus(), robot_status_shown_);
   showCueStatus("State", cue_source_.stateStatus(), state_status_shown_);
+  if (cue_settings_.corridor)
+  {
+    takeCorridorFootprint();
+  }
   if (cue_settings_.stop_zone)
   {
     input.speed = stop_source_.speedAt(input.time);
@@ -160,7 +200,9 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
       cue_next_.arrowAlpha() == cue_drawn_.arrowAlpha() && same(cue_next_.arrows(), cue_drawn_.arrows()) &&
       same(cue_next_.destination(), cue_drawn_.destination()) && same(cue_next_.glyph(), cue_drawn_.glyph()) &&
       same(cue_next_.stopZone().triangles(), cue_drawn_.stopZone().triangles()) &&
-      cue_next_.stopZone().alpha() == cue_drawn_.stopZone().alpha())
+      cue_next_.stopZone().alpha() == cue_drawn_.stopZone().alpha() &&
+      same(cue_next_.corridor().band(), cue_drawn_.corridor().band()) &&
+      same(cue_next_.corridor().edges(), cue_drawn_.corridor().edges()))
   {
     return;  // the projector already shows exactly this: no upload, no frame
   }
@@ -181,6 +223,11 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
   Ogre::ColourValue stop_colour = stop_properties_->color->getOgreColor();
   stop_colour.a = alpha;
   stop_mesh_->setFlatTriangles(cue_drawn_.stopZone().triangles(), cue_drawn_.stopZone().alpha(), height, stop_colour);
+  Ogre::ColourValue corridor_colour = corridor_properties_->color->getOgreColor();
+  const bool band = corridor_properties_->band();
+  corridor_colour.a = alpha * (band ? corridor_properties_->alpha->getFloat() : 1.0f);
+  corridor_mesh_->setFlatTriangles(band ? cue_drawn_.corridor().band() : cue_drawn_.corridor().edges(), height,
+                                   corridor_colour);
   ++mesh_builds_;
   ProjectionChangeNotifier::notify();
   context_->queueRender();

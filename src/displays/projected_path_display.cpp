@@ -22,6 +22,7 @@
 #include "rviz_projector/displays/path_cue_properties.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
+#include "rviz_projector/displays/corridor_properties.h"
 #include "rviz_projector/displays/stop_zone_properties.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
@@ -119,6 +120,7 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
   path_timeout_property_->setMin(0.0f);
   cue_properties_ = std::make_unique<PathCueProperties>(this);
   stop_properties_ = std::make_unique<StopZoneProperties>(this);
+  corridor_properties_ = std::make_unique<CorridorProperties>(this);
   cue_settings_ = cue_properties_->settings();
   ProjectionAnimation::add(this);
 }
@@ -129,6 +131,7 @@ ProjectedPathDisplay::~ProjectedPathDisplay()
   pauseDraining();
   cue_source_.unsubscribe();
   stop_source_.unsubscribe();
+  corridor_source_.unsubscribe();
 }
 
 void ProjectedPathDisplay::onInitialize()
@@ -146,10 +149,12 @@ void ProjectedPathDisplay::onInitialize()
   circle_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   stop_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  corridor_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
   updateStateTopic();
   updateStopZone();
+  updateCorridor();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
 }
 
@@ -158,7 +163,7 @@ void ProjectedPathDisplay::onEnable()
   MFDClass::onEnable();
   resumeDraining();
   scene_node_->setVisible(true);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get()})
   {
     if (mesh)
     {
@@ -173,7 +178,7 @@ void ProjectedPathDisplay::onDisable()
   MFDClass::onDisable();
   pauseDraining();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get()})
   {
     if (mesh)
     {
@@ -200,10 +205,12 @@ void ProjectedPathDisplay::reset()
     circle_mesh_->clear();
     glyph_mesh_->clear();
     stop_mesh_->clear();
+    corridor_mesh_->clear();
     ProjectionChangeNotifier::notify();
   }
   cue_source_.clear();
   stop_source_.clear();
+  corridor_source_.clear();
   robot_status_shown_ = CueStatus();
   state_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
@@ -231,7 +238,8 @@ void ProjectedPathDisplay::load(const rviz::Config& config)
   check.choice(config.mapGetChild(mode_property_->getName()), mode_property_, {"Exact", "Paper"}, "Exact");
   check.choice(config.mapGetChild(style_property_->getName()), style_property_, {"Flat", "3D"}, "Flat");
   QString report = check.report();
-  for (const QString& part : {cue_properties_->checkLoaded(config), stop_properties_->checkLoaded(config)})
+  for (const QString& part : {cue_properties_->checkLoaded(config), stop_properties_->checkLoaded(config),
+                              corridor_properties_->checkLoaded(config)})
   {
     if (!part.isEmpty())
     {
@@ -343,7 +351,8 @@ void ProjectedPathDisplay::drainQueue()
     setStatus(rviz::StatusProperty::Error, "Transform", tf_wait_error_);
   }
   const bool odometry = stop_source_.takeNews();
-  if ((cue_source_.takeNews() || odometry) && arrow_mesh_ && isEnabled() && cuesActive())
+  const bool footprint = corridor_source_.takeNews();
+  if ((cue_source_.takeNews() || odometry || footprint) && arrow_mesh_ && isEnabled() && cuesActive())
   {
     drawCues(cueTime(), false);  // a new goal state shows at once, whatever the clock does
   }
@@ -372,6 +381,7 @@ void ProjectedPathDisplay::checkPathTimeout()
   circle_mesh_->clear();
   glyph_mesh_->clear();
   stop_mesh_->clear();
+  corridor_mesh_->clear();
   deleteStatus("Style");
   setStatus(rviz::StatusProperty::Warn, "Path",
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
@@ -471,6 +481,7 @@ void ProjectedPathDisplay::redraw()
   }
   glyph_mesh_->clear();
   stop_mesh_->clear();
+  corridor_mesh_->clear();
   const double height = height_property_->getFloat();
   const float alpha = alpha_property_->getFloat();
   Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
@@ -508,6 +519,11 @@ void ProjectedPathDisplay::redraw()
 std::size_t ProjectedPathDisplay::glyphTriangleCount() const
 {
   return glyph_mesh_ ? glyph_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::corridorTriangleCount() const
+{
+  return corridor_mesh_ ? corridor_mesh_->triangleCount() : 0;
 }
 
 std::size_t ProjectedPathDisplay::stopZoneTriangleCount() const

@@ -248,6 +248,9 @@ TEST(SweptCorridor, BadFootprintsAreRefusedWithAReason)
 
   const Path path = straightPath(5.0);
   SweptCorridor corridor;
+  corridor.build(path.points, path.lengths, 0.0, kRectangle, CorridorParameters());
+  ASSERT_FALSE(corridor.band().empty());
+  // A bad footprint after a good one: the last corridor does not stay.
   corridor.build(path.points, path.lengths, 0.0, {{0, 0}, {2, 2}, {2, 0}, {0, 1}}, CorridorParameters());
   EXPECT_TRUE(corridor.band().empty());
   EXPECT_TRUE(corridor.edges().empty());
@@ -255,6 +258,30 @@ TEST(SweptCorridor, BadFootprintsAreRefusedWithAReason)
   {
     corridor.buildRound(path.points, path.lengths, 0.0, radius, CorridorParameters());
     EXPECT_TRUE(corridor.band().empty()) << radius;
+  }
+}
+
+TEST(SweptCorridor, FootprintsAreReadAsMoveBaseWritesThem)
+{
+  std::string error;
+  const std::vector<Vec2> polygon = parseFootprint("[[0.4, 0.3], [-0.2, 0.3],[-0.2,-0.3], [0.4, -3e-1]]", error);
+  EXPECT_EQ("", error);
+  ASSERT_EQ(4u, polygon.size());
+  EXPECT_DOUBLE_EQ(-0.2, polygon[2].x);
+  EXPECT_DOUBLE_EQ(-0.3, polygon[3].y);
+  for (const auto& bad : std::vector<std::pair<std::string, std::string>>{
+           {"", "no points"},
+           {"[[0.4, 0.3], [0.1]]", "point 2 has 1 numbers"},
+           {"[[0.4, 0.3, 1], [0.1, 2]]", "point 1 has 3 numbers"},
+           {"[[0.4, 0.3], [0.1, 0.2]", "without its ']'"},
+           {"[[0.4, 0.3]]]", "without its '['"},
+           {"[[[0.4, 0.3]]]", "more than two levels"},
+           {"[[0.4, wide]]", "unexpected 'wide]]'"},
+           {"0.3", "unexpected '0.3'"}})
+  {
+    EXPECT_TRUE(parseFootprint(bad.first, error).empty()) << bad.first;
+    EXPECT_NE(std::string::npos, error.find(bad.second)) << bad.first << ": " << error;
+    EXPECT_NE(std::string::npos, error.find("[[x, y], [x, y], ...]")) << error;
   }
 }
 

@@ -10,6 +10,7 @@
 #include "rviz_projector/core/spaced_path.h"
 #include "rviz_projector/core/spacing_parameters.h"
 #include "rviz_projector/core/stop_zone.h"
+#include "rviz_projector/core/swept_corridor.h"
 #include "rviz_projector/core/turn_signal.h"
 #include "rviz_projector/core/vec2.h"
 
@@ -31,9 +32,14 @@ struct PathCueSettings
   double glyph_aside = 0.45;    ///< ... and sideways (towards the inside of the turn), metres
   bool stop_zone = false;
   StopZoneParameters stop;
+  bool corridor = false;
+  CorridorParameters corridor_parameters;
+  /// The robot's footprint for the corridor: a radius (> 0), or else the polygon (robot frame).
+  double corridor_radius = 0.3;
+  std::vector<Vec2> corridor_footprint;
 
-  /// Whether any cue needs the robot's position (horizon, turn signal, stop zone).
-  bool needsRobot() const { return horizon || turn_signal || stop_zone; }
+  /// Whether any cue needs the robot's position (horizon, turn signal, stop zone, corridor).
+  bool needsRobot() const { return horizon || turn_signal || stop_zone || corridor; }
 };
 
 /// The inputs that change over time.
@@ -59,6 +65,9 @@ struct PathCueInput
  * - Turn glyph: when the turn signal is on, the robot is known, detectTurn finds a turn and the
  *   arrows are shown, lit while blinkOn(time, turn_hz) (blinking from time 0, so every projector
  *   blinks in step).
+ * - Corridor: when on and the goal frame shows the arrows, SweptCorridor from the robot's arc length
+ *   (as the stop zone) over corridor_parameters.length, with the radius (> 0) or the footprint
+ *   polygon; rebuilt only when the path, the robot's place on it or the settings changed.
  * - Stop zone: when on and the goal frame shows the arrows, StopZone::build from the robot's arc
  *   length (the path's start without a known robot, as the horizon) at `input.speed`; the horizon
  *   does not cut it.
@@ -85,6 +94,8 @@ public:
   const TurnDetection& turn() const { return turn_; }
   /// The stop zone's triangles and per-vertex alpha (not shown: empty).
   const StopZone& stopZone() const { return stop_zone_; }
+  /// The swept corridor (not shown: empty).
+  const SweptCorridor& corridor() const { return corridor_; }
   bool animating() const { return animating_; }
   /// Whether the horizon is limited (for the display's status): where it starts, arc length.
   double horizonStart() const { return horizon_start_; }
@@ -100,6 +111,19 @@ private:
   bool animating_ = false;
   TurnDetection turn_;
   StopZone stop_zone_;
+  SweptCorridor corridor_;
+  /// What corridor_ was last built from: rebuilt only when one of these changes.
+  struct CorridorKey
+  {
+    const Vec2* path = nullptr;
+    std::size_t path_size = 0;
+    Vec2 first, last;
+    double robot_arc = -1.0;
+    double radius = 0.0;
+    std::vector<Vec2> footprint;
+    CorridorParameters parameters;
+    bool operator==(const CorridorKey& o) const;
+  } corridor_key_;
   double horizon_start_ = 0.0;
 };
 }  // namespace rviz_projector

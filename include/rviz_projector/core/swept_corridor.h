@@ -15,6 +15,11 @@ namespace rviz_projector
 /// can: fewer than 3 vertices, a non-finite vertex, no area, edges that cross.
 std::string footprintProblem(const std::vector<Vec2>& footprint);
 
+/// A footprint as move_base's `footprint` parameter writes it, "[[x, y], [x, y], ...]" (metres,
+/// robot frame); `error` says what is wrong when it cannot be read (the polygon is then empty).
+/// The polygon itself is judged by footprintProblem().
+std::vector<Vec2> parseFootprint(const std::string& text, std::string& error);
+
 struct CorridorParameters
 {
   double length = 3.0;        ///< metres of path from the robot's place (clipped at the destination)
@@ -25,9 +30,7 @@ struct CorridorParameters
 };
 
 /// The swept corridor of the last build():
-/// - band(): triangles covering the swept area. They overlap (one convex piece per step); draw
-///   them so that overlaps do not add up (the display's band material writes depth and tests it
-///   strictly).
+/// - band(): triangles covering the swept area once (its rims triangulated), for a translucent fill.
 /// - edges(): the envelope's boundary without the caps behind the robot and at the far end (the
 ///   "two outer edges"; where the path loops and the area has holes, the holes' rims too), as
 ///   polylines, and as triangles of `edge_width` centred on them.

@@ -21,6 +21,7 @@
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/private_callback_queue.h"
 #include "rviz_projector/displays/projection_animation.h"
+#include "rviz_projector/displays/corridor_source.h"
 #include "rviz_projector/displays/stop_zone_source.h"
 #endif
 
@@ -35,6 +36,7 @@ namespace rviz_projector
 {
 class FloorMesh;
 struct PathCueProperties;
+struct CorridorProperties;
 struct StopZoneProperties;
 
 /// The base of ProjectedPathDisplay: rviz's MessageFilterDisplay, destroyed before the queue.
@@ -43,7 +45,7 @@ class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFi
 };
 
 /// Cues (issue 15: horizon, marching, robot state, pre-motion warning, turn signal; issue 25: stop
-/// zone) are computed by
+/// zone, corridor) are computed by
 /// the core's CueDrawing from PathCueSource's inputs at the time of each frame (AnimatedDrawing).
 class ProjectedPathDisplay : public ProjectedPathBase, public AnimatedDrawing
 {
@@ -73,6 +75,10 @@ public:
   std::size_t stopZoneTriangleCount() const;
   /// Odometry messages the stop zone took (for tests: ROS time may move on once it has its message).
   std::size_t odometryMessages() const { return stop_source_.messages(); }
+  /// Triangles of the corridor drawn now (edges or band).
+  std::size_t corridorTriangleCount() const;
+  /// Footprint messages the corridor took.
+  std::size_t footprintMessages() const { return corridor_source_.messages(); }
 
   /// Brings the cues up to `now` (ROS time); called by every projector at each frame tick and by
   /// rviz's update. Redraws only when the picture changes. No cue on: nothing.
@@ -104,6 +110,8 @@ private Q_SLOTS:
   void updateStateTopic();
   /// A Stop zone property changed: (un)subscribes the Odometry topic, then updateCues().
   void updateStopZone();
+  /// A Corridor property changed: (un)subscribes the Footprint topic, then updateCues().
+  void updateCorridor();
 
 private:
   /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
@@ -178,5 +186,12 @@ private:
   StopZoneSource stop_source_;
   CueStatus stop_status_shown_;
   std::unique_ptr<FloorMesh> stop_mesh_;
+
+  std::unique_ptr<CorridorProperties> corridor_properties_;
+  CorridorSource corridor_source_;
+  CueStatus corridor_status_shown_;
+  std::unique_ptr<FloorMesh> corridor_mesh_;
+  /// The footprint for this frame into cue_settings_, its status shown.
+  void takeCorridorFootprint();
 };
 }  // namespace rviz_projector

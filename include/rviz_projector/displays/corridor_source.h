@@ -1,0 +1,71 @@
+// Where the corridor's footprint comes from: the Radius, the Polygon typed in the properties, or a
+// geometry_msgs/PolygonStamped topic (on the display's private callback queue) moved into the Robot
+// frame with tf. One part of ProjectedPathDisplay: it returns the footprint and what the "Corridor"
+// status says.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/PolygonStamped.h>
+#include <ros/node_handle.h>
+#include <ros/subscriber.h>
+
+#include "rviz_projector/core/vec2.h"
+#include "rviz_projector/displays/path_cue_source.h"
+#endif
+
+namespace tf2_ros
+{
+class Buffer;
+}
+
+namespace rviz_projector
+{
+/// The footprint to sweep: a radius (> 0) or else a polygon in the robot frame; neither when the
+/// status is not Ok.
+struct CorridorFootprint
+{
+  double radius = 0.0;
+  std::vector<Vec2> polygon;
+  CueStatus status;
+  bool usable() const { return status.level != CueStatus::Level::Error && (radius > 0.0 || !polygon.empty()); }
+};
+
+class CorridorSource
+{
+public:
+  /// Subscribes to `topic` with `nh` (whose callback queue the display drains); empty: none. The
+  /// same topic again changes nothing.
+  void subscribe(ros::NodeHandle& nh, const std::string& topic);
+  void unsubscribe();
+  /// Forgets the last message (rviz's Reset).
+  void clear();
+  /// A round robot.
+  static CorridorFootprint fromRadius(double radius);
+  /// The typed polygon, read and judged.
+  static CorridorFootprint fromText(const std::string& text);
+  /// The last message's polygon in `robot_frame` (tf at its stamp, else the latest transform).
+  CorridorFootprint fromTopic(const tf2_ros::Buffer& tf, const std::string& robot_frame);
+  /// Footprint messages taken so far (tests wait for theirs).
+  std::size_t messages() const { return messages_; }
+  /// Whether a message arrived since the last call (the picture may change at once).
+  bool takeNews()
+  {
+    const bool news = news_;
+    news_ = false;
+    return news;
+  }
+
+private:
+  void onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg);
+
+  ros::Subscriber subscriber_;
+  std::string topic_;
+  std::string subscribe_error_;
+  geometry_msgs::PolygonStamped::ConstPtr last_;
+  bool news_ = false;
+  std::size_t messages_ = 0;
+};
+}  // namespace rviz_projector

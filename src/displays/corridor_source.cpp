@@ -1,0 +1,150 @@
+#include "rviz_projector/displays/corridor_source.h"
+
+#include <cmath>
+
+#include <tf2/exceptions.h>
+#include <tf2_geometry_msgs/tf2_geometry_msgs.h>
+#include <tf2_ros/buffer.h>
+
+#include "rviz_projector/core/swept_corridor.h"
+
+namespace rviz_projector
+{
+namespace
+{
+CorridorFootprint judged(std::vector<Vec2> polygon, const std::string& where)
+{
+  CorridorFootprint result;
+  const std::string problem = footprintProblem(polygon);
+  if (!problem.empty())
+  {
+    result.status = CueStatus{CueStatus::Level::Error, where + ": " + problem + ": no corridor"};
+    return result;
+  }
+  result.polygon = std::move(polygon);
+  result.status = CueStatus{CueStatus::Level::Ok, where + ": " + std::to_string(result.polygon.size()) + " points"};
+  return result;
+}
+}  // namespace
+
+void CorridorSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
+{
+  if (topic == topic_ && subscribe_error_.empty())
+  {
+    return;
+  }
+  unsubscribe();
+  topic_ = topic;
+  if (topic_.empty())
+  {
+    return;
+  }
+  try
+  {
+    subscriber_ = nh.subscribe(topic_, 2, &CorridorSource::onFootprint, this);
+  }
+  catch (const ros::Exception& e)
+  {
+    topic_.clear();
+    subscribe_error_ = std::string("Cannot subscribe to the Footprint topic '") + topic + "': " + e.what();
+  }
+}
+
+void CorridorSource::unsubscribe()
+{
+  subscriber_.shutdown();
+  topic_.clear();
+  subscribe_error_.clear();
+  clear();
+}
+
+void CorridorSource::clear()
+{
+  last_.reset();
+}
+
+void CorridorSource::onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg)
+{
+  last_ = msg;
+  news_ = true;
+  ++messages_;
+}
+
+CorridorFootprint CorridorSource::fromRadius(double radius)
+{
+  CorridorFootprint result;
+  if (!(radius > 0.0) || !std::isfinite(radius))
+  {
+    result.status = CueStatus{CueStatus::Level::Error, "The Radius must be > 0: no corridor"};
+    return result;
+  }
+  result.radius = radius;
+  result.status = CueStatus{CueStatus::Level::Ok, "A round robot"};
+  return result;
+}
+
+CorridorFootprint CorridorSource::fromText(const std::string& text)
+{
+  std::string error;
+  std::vector<Vec2> polygon = parseFootprint(text, error);
+  if (!error.empty())
+  {
+    CorridorFootprint result;
+    result.status = CueStatus{CueStatus::Level::Error, "Polygon: " + error + ": no corridor"};
+    return result;
+  }
+  return judged(std::move(polygon), "Polygon");
+}
+
+CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std::string& robot_frame)
+{
+  CorridorFootprint result;
+  if (!subscribe_error_.empty())
+  {
+    result.status = CueStatus{CueStatus::Level::Error, subscribe_error_};
+    return result;
+  }
+  if (topic_.empty())
+  {
+    result.status = CueStatus{CueStatus::Level::Warn, "No Footprint topic set: no corridor"};
+    return result;
+  }
+  if (!last_)
+  {
+    result.status = CueStatus{CueStatus::Level::Warn, "No footprint received yet on " + topic_ + ": no corridor"};
+    return result;
+  }
+  // move_base publishes the outline where the robot was at the stamp, in the costmap's frame: at
+  // that stamp it is the robot's own outline. A stamp tf cannot give (zero, too old) takes the latest.
+  geometry_msgs::TransformStamped to_robot;
+  try
+  {
+    try
+    {
+      to_robot = tf.lookupTransform(robot_frame, last_->header.frame_id, last_->header.stamp);
+    }
+    catch (const tf2::TransformException&)
+    {
+      to_robot = tf.lookupTransform(robot_frame, last_->header.frame_id, ros::Time(0));
+    }
+  }
+  catch (const tf2::TransformException& e)
+  {
+    result.status = CueStatus{CueStatus::Level::Error, "Footprint on " + topic_ + ": no transform from '" +
+                                                           last_->header.frame_id + "' to the Robot frame '" +
+                                                           robot_frame + "': " + e.what() + ": no corridor"};
+    return result;
+  }
+  std::vector<Vec2> polygon;
+  for (const geometry_msgs::Point32& p : last_->polygon.points)
+  {
+    geometry_msgs::Point in, out;
+    in.x = p.x;
+    in.y = p.y;
+    in.z = p.z;
+    tf2::doTransform(in, out, to_robot);
+    polygon.push_back({out.x, out.y});
+  }
+  return judged(std::move(polygon), "Footprint on " + topic_);
+}
+}  // namespace rviz_projector
