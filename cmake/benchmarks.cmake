@@ -21,6 +21,7 @@ if(benchmark_FOUND)
     bench/micro/mask_benchmarks.cpp
     bench/micro/mesh_benchmarks.cpp
     bench/micro/micro_benchmarks.cpp
+    bench/micro/off_view_benchmarks.cpp
     bench/micro/reference_baseline.cpp
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)

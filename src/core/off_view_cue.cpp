@@ -210,7 +210,10 @@ Window judgeWindow(const std::vector<Vec2>& points, const std::vector<double>& l
 {
   Window window;
   std::vector<double> cuts;
-  for (std::size_t i = 0; i + 1 < points.size(); ++i)
+  // From the segment holding `from` to the one holding `to` (a 5,000-pose path: a few dozen).
+  const auto first = std::upper_bound(lengths.begin(), lengths.end(), from);
+  for (std::size_t i = first == lengths.begin() ? 0 : std::size_t(first - lengths.begin()) - 1;
+       i + 1 < points.size() && lengths[i] < to; ++i)
   {
     const double s0 = std::max(from, lengths[i]), s1 = std::min(to, lengths[i + 1]);
     if (!(s1 > s0))
