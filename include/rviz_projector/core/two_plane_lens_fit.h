@@ -40,8 +40,8 @@ struct TwoPlaneLensFit
   RigidTransform parent_T_optical;
   ProjectorMount mount;
   /// 1-sigma of fx, fy, cx, cy (pixels) and k1, k2 (0 when not fitted): OpenCV's, from the RMS
-  /// residual as if the pixel errors were independent (dense points' errors are correlated over a
-  /// few cells, so the true uncertainty is a few times larger).
+  /// residual of the points fitted as if their pixel errors were independent (dense points' errors
+  /// are correlated over a few cells, so the true uncertainty can be larger).
   std::array<double, 4> lens_stddev{};
   std::array<double, 2> k_stddev{};
   int floor_inliers = 0;
@@ -60,7 +60,8 @@ struct TwoPlaneLensFit
  * Pose, fx, fy, cx, cy (and k1, k2) from floor points (one plane z = const) and board points (a
  * tilted plane), FloorPoint as the dense solver takes them.
  *  - Start: `prior` lens, `distortion` and `parent_T_optical` (the dense floor solution).
- *  - Fit: cv::calibrateCamera on the single view of the non-coplanar points with
+ *  - Fit: cv::calibrateCamera (on at most 1,500 floor and 1,000 board inliers, evenly spread: its
+ *    time grows faster than linearly with the points) on the single view of the non-coplanar points with
  *    CALIB_USE_INTRINSIC_GUESS (OpenCV accepts a non-planar rig only with a guess), tangential and
  *    k3 fixed at zero (all coefficients fixed without fit_distortion); pixels shifted by one image
  *    size (the principal point of a projector lies outside its image, as in solveMount). Then the
