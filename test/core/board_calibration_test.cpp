@@ -143,6 +143,22 @@ TEST(BoardCalibration, TheBoardPinsTheIntrinsicsFromAWrongPrior)
   EXPECT_LE(errors.back(), 3.0);
 }
 
+TEST(BoardCalibration, AKeptDistortionStaysAndTheIntrinsicsAreStillFitted)
+{
+  // --keep-distortion --board with the true D in the file: K is fitted through it, D unchanged.
+  const sim::Scene scene = boardScene(45.0);
+  CameraCalibrationInput input = inputFor(scene, true);
+  input.fit_distortion = false;
+  input.distortion = LensDistortion(LensDistortion::Model::PlumbBob, {-0.2, 0.05, 0.0, 0.0, 0.0});
+  const CameraCalibrationResult r = solveFromCaptures(input, capturesOf(scene, boardCamera()));
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_TRUE(r.lens_fitted);
+  EXPECT_EQ(r.lens_fit.distortion.coefficients(), input.distortion.coefficients());
+  EXPECT_EQ(r.lens_fit.k_stddev[0], 0.0);
+  EXPECT_NEAR(r.lens_fit.lens.fx(), scene.projector.fx, 0.003 * scene.projector.fx);
+  EXPECT_NEAR(r.lens_fit.lens.cy(), scene.projector.cy, 2.0);
+}
+
 TEST(BoardCalibration, WithoutTheBoardOptionTheIntrinsicsAreNotFitted)
 {
   // The floor alone (no board in the scene): the mount and k1, k2 are solved, the lens is the prior's.
