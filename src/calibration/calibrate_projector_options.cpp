@@ -59,11 +59,12 @@ std::string calibrateUsage()
          "      (/clicked_point), transforms it into --frame with tf, writes points.yaml and solves\n"
          "  calibrate_projector --camera --camera-info CAL.yaml --image /camera/image_raw [--frame base_link]\n"
          "                      [--floor-frame F] [--projector-frame F] [--pattern-topic T] [--settle S]\n"
-         "                      [--keep-distortion] [--output mount.yaml] [--output-calibration NEW_CAL.yaml]\n"
+         "                      [--keep-distortion] [--board COLSxROWS:SQUARE_M] [--output mount.yaml]\n"
+         "                      [--output-calibration NEW_CAL.yaml]\n"
          "      a ROS node: shows Gray code patterns through the running projector (the ProjectorCamera's\n"
          "      Pattern topic, in rviz or projector_host), captures each with the robot's camera, decodes\n"
          "      which projector pixel lights each camera pixel, and solves the mount and k1, k2 (fx, fy, cx,\n"
-         "      cy stay the file's: a flat floor cannot pin them)\n"
+         "      cy stay the file's: a flat floor cannot pin them; --board fits them too)\n"
          "Options:\n"
          "  --camera-info CAL.yaml   the projector's calibration (path, package://pkg/path or file:///path)\n"
          "  --rows R, --cols C       crosshair pattern size, 1.." +
@@ -88,6 +89,9 @@ std::string calibrateUsage()
          "  --settle S               --camera: seconds from the projector's acknowledgement to the first camera\n"
          "                           frame used (projector lag + camera exposure; default 0.15)\n"
          "  --keep-distortion        --camera: keep the file's D instead of fitting k1, k2\n"
+         "  --board COLSxROWS:SQUARE_M   --camera: a printed checkerboard (inner corners, square side in metres,\n"
+         "                           e.g. 7x5:0.06) propped up 30-60 deg from the floor in the lit patch, in the\n"
+         "                           camera's view: fx, fy, cx, cy are fitted too\n"
          "Exit status: 0 solved/written, 1 bad input or no solution (nothing written), 2 bad command line.\n";
 }
 
@@ -139,6 +143,8 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     int* count = nullptr;
     double* tape_error = nullptr;
     double* settle = nullptr;
+    std::string board;
+    bool is_board = false;
     if (arg == "--camera-info")
       text = &out.camera_info;
     else if (arg == "--points")
@@ -161,6 +167,8 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
       text = &out.projector_frame;
     else if (arg == "--settle")
       settle = &out.settle;
+    else if (arg == "--board")
+      text = &board, is_board = true;
     else if (arg == "--rows")
       count = &out.rows;
     else if (arg == "--tape-error")
@@ -177,6 +185,16 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
     if (text != nullptr)
     {
       *text = value;
+      BoardSpec spec;
+      std::string error;
+      if (is_board && !parseBoardSpec(value, spec, error))
+      {
+        return arg + ": " + error;
+      }
+      if (is_board)
+      {
+        out.board = spec;
+      }
     }
     else if (settle != nullptr)
     {
@@ -249,9 +267,11 @@ std::string parseCalibrateOptions(const std::vector<std::string>& args, Calibrat
   }
   if (!camera && (out.keep_distortion || out.image != CalibrateOptions().image ||
                   out.pattern_topic != CalibrateOptions().pattern_topic || !out.floor_frame.empty() ||
-                  out.projector_frame != CalibrateOptions().projector_frame || out.settle != CalibrateOptions().settle))
+                  out.projector_frame != CalibrateOptions().projector_frame || out.settle != CalibrateOptions().settle ||
+                  out.board))
   {
-    return "--image, --pattern-topic, --floor-frame, --projector-frame, --settle and --keep-distortion are for --camera";
+    return "--image, --pattern-topic, --floor-frame, --projector-frame, --settle, --keep-distortion and --board are "
+           "for --camera";
   }
   if (camera && (out.image.empty() || out.pattern_topic.empty()))
   {

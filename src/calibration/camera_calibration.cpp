@@ -1,5 +1,6 @@
 #include "rviz_projector/calibration/camera_calibration.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -58,6 +59,14 @@ sensor_msgs::CameraInfo withDistortion(sensor_msgs::CameraInfo info, const LensD
   return info;
 }
 
+/// The calibration file's CameraInfo with the fitted lens: K, and P = [K | 0].
+sensor_msgs::CameraInfo withLens(sensor_msgs::CameraInfo info, const PinholeModel& lens)
+{
+  info.K = {lens.fx(), 0.0, lens.cx(), 0.0, lens.fy(), lens.cy(), 0.0, 0.0, 1.0};
+  info.P = {lens.fx(), 0.0, lens.cx(), 0.0, 0.0, lens.fy(), lens.cy(), 0.0, 0.0, 0.0, 1.0, 0.0};
+  return info;
+}
+
 /// Seconds of the run: all, showing and capturing the patterns, decoding and solving.
 struct Timing
 {
@@ -67,8 +76,34 @@ struct Timing
   std::size_t patterns = 0;
 };
 
+/// The board's lines of the report: the fitted lens against the file's, and its residuals.
+std::string lensReport(const CameraCalibrationResult& r, const PinholeModel& prior)
+{
+  const TwoPlaneLensFit& f = r.lens_fit;
+  std::ostringstream text;
+  text << "Board: tilted " << fixedDecimals(r.board.tilt_deg, 1) << " deg from the floor, "
+       << fixedDecimals(r.board.distance, 2) << " m from the camera (corners RMS "
+       << fixedDecimals(r.board.corner_rms_px, 2) << " px); " << r.board_correspondences << " correspondences on it\n";
+  const double fitted[] = {f.lens.fx(), f.lens.fy(), f.lens.cx(), f.lens.cy()};
+  const double file[] = {prior.fx(), prior.fy(), prior.cx(), prior.cy()};
+  const char* names[] = {"fx", "fy", "cx", "cy"};
+  text << "Lens (fitted, 1 sigma; the file's):";
+  for (int k = 0; k < 4; ++k)
+  {
+    text << " " << names[k] << " " << fixedDecimals(fitted[k], 2) << " +- " << fixedDecimals(f.lens_stddev[std::size_t(k)], 2)
+         << " (" << fixedDecimals(file[k], 2) << ")" << (k < 3 ? ";" : "");
+  }
+  text << "\n  (the 1 sigma assumes independent pixel errors; expect a few times more)\n";
+  text << "Residuals: " << f.floor_inliers << " floor and " << f.board_inliers << " board inliers, " << f.outliers
+       << " outliers; RMS " << fixedDecimals(f.rms_px, 3) << " px (board " << fixedDecimals(f.board_rms_px, 3)
+       << " px); on the floor median " << fixedDecimals(f.floor_median_mm, 2) << " mm, max "
+       << fixedDecimals(f.floor_max_mm, 2) << " mm\n";
+  return text.str();
+}
+
 std::string report(const CameraCalibrationResult& r, const ProjectorMount& mount, const std::string& parent,
-                   const ProjectorMount* prior, const Timing& timing, std::size_t camera_pixels)
+                   const ProjectorMount* prior, const Timing& timing, std::size_t camera_pixels,
+                   const PinholeModel& file_lens)
 {
   const DenseMountSolution& s = r.solution;
   std::ostringstream text;
@@ -83,17 +118,22 @@ std::string report(const CameraCalibrationResult& r, const ProjectorMount& mount
          << fixedDecimals((mount.pitch - prior->pitch) * 180.0 / M_PI, 3) << " deg, yaw "
          << fixedDecimals((mount.yaw - prior->yaw) * 180.0 / M_PI, 3) << " deg\n";
   }
-  const std::vector<double>& d = s.distortion.coefficients();
+  const std::vector<double>& d = r.lens_fitted ? r.lens_fit.distortion.coefficients() : s.distortion.coefficients();
+  const std::array<double, 2>& k_stddev = r.lens_fitted ? r.lens_fit.k_stddev : s.k_stddev;
   text << "Distortion: " << (d.empty() ? std::string("none") : "k1 " + fixedDecimals(d[0], 5) + " +- " +
-                                                                   fixedDecimals(s.k_stddev[0], 5) + ", k2 " +
+                                                                   fixedDecimals(k_stddev[0], 5) + ", k2 " +
                                                                    fixedDecimals(d.size() > 1 ? d[1] : 0.0, 5) +
-                                                                   " +- " + fixedDecimals(s.k_stddev[1], 5))
+                                                                   " +- " + fixedDecimals(k_stddev[1], 5))
        << "\n";
+  if (r.lens_fitted)
+  {
+    text << lensReport(r, file_lens);
+  }
   text << "Coverage: " << percent(r.coverage) << " of the projector image, "
        << percent(double(r.decoded.lit) / double(std::max<std::size_t>(camera_pixels, 1)))
        << " of the camera image lit; " << r.decoded.decoded << " camera pixels decoded (" << r.decoded.full
        << " to the last bit), " << r.correspondences << " correspondences\n";
-  text << "Residuals: " << s.inliers << " inliers, " << s.outliers << " outliers; RMS " << fixedDecimals(s.rms_px, 3)
+  text << (r.lens_fitted ? "Floor alone, the file's lens: " : "Residuals: ") << s.inliers << " inliers, " << s.outliers << " outliers; RMS " << fixedDecimals(s.rms_px, 3)
        << " px; on the floor median " << fixedDecimals(s.median_mm, 2) << " mm, max " << fixedDecimals(s.max_mm, 2)
        << " mm\n";
   text << "Expected floor error (1 sigma):";
@@ -124,6 +164,7 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   CameraCalibrationInput input;
   const LensCalibration projector = toLensCalibration(file.file.info);
   input.fit_distortion = !options.keep_distortion;
+  input.board = options.board;
   if (const LensCheck check = LensDistortion::fromCalibration(projector, input.distortion); !check.ok())
   {
     return reportError(err, file.file.path + ": unusable distortion: " + check.error);
@@ -204,13 +245,14 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   {
     return reportError(err, result.error + " (nothing written)");
   }
-  const RigidTransform base_T_optical = base_T_floor * result.solution.parent_T_optical;
+  const RigidTransform base_T_optical =
+      base_T_floor * (result.lens_fitted ? result.lens_fit.parent_T_optical : result.solution.parent_T_optical);
   MountSolution mount;
   mount.ok = true;
   mount.mount = mountOfOpticalPose(base_T_optical);
   mount.parent_T_optical = base_T_optical;
-  mount.rms_px = result.solution.rms_px;
-  mount.rms_mm = result.solution.rms_mm;
+  mount.rms_px = result.lens_fitted ? result.lens_fit.rms_px : result.solution.rms_px;
+  mount.rms_mm = result.lens_fitted ? result.lens_fit.floor_rms_mm : result.solution.rms_mm;
 
   std::vector<std::pair<std::string, std::string>> files;
   if (!options.output.empty())
@@ -223,10 +265,16 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   if (!options.output_calibration.empty())
   {
     std::ostringstream yaml;
-    // --keep-distortion: the file as it was (its D is what the solve used).
-    const sensor_msgs::CameraInfo written = options.keep_distortion
-                                                ? file.file.info
-                                                : withDistortion(file.file.info, result.solution.distortion);
+    // --keep-distortion: the file's D (what the solve used); --board: the fitted K, P = [K | 0].
+    sensor_msgs::CameraInfo written = options.keep_distortion
+                                          ? file.file.info
+                                          : withDistortion(file.file.info, result.lens_fitted
+                                                                               ? result.lens_fit.distortion
+                                                                               : result.solution.distortion);
+    if (result.lens_fitted)
+    {
+      written = withLens(written, result.lens_fit.lens);
+    }
     if (!camera_calibration_parsers::writeCalibrationYml(yaml, file.file.camera_name, written))
     {
       return reportError(err, options.output_calibration + ": the calibration could not be formatted (nothing written)");
@@ -239,7 +287,7 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   }
   timing.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out << report(result, mount.mount, options.frame, input.prior != nullptr ? &prior_base : nullptr, timing,
-                captures.empty() ? 0 : captures[0].total());
+                captures.empty() ? 0 : captures[0].total(), input.lens);
   if (!options.output.empty())
   {
     out << "Mount written to " << options.output << ": projector.launch mount_file:=" << options.output << "\n";
@@ -247,7 +295,8 @@ int runCameraCalibration(const CalibrateOptions& options, std::ostream& out, std
   if (!options.output_calibration.empty())
   {
     out << "Calibration written to " << options.output_calibration
-        << (options.keep_distortion ? " (unchanged: --keep-distortion)" : " (D = k1 k2 0 0 0, P = K)")
+        << (result.lens_fitted ? (options.keep_distortion ? " (K fitted, P = K, D kept)" : " (K fitted, D = k1 k2 0 0 0, P = K)")
+                               : (options.keep_distortion ? " (unchanged: --keep-distortion)" : " (D = k1 k2 0 0 0, P = K)"))
         << ": calibration_file:=" << options.output_calibration << "\n";
   }
   return kExitOk;

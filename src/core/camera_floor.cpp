@@ -176,14 +176,30 @@ std::string cameraLensProblem(const LensCalibration& camera)
 std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const RigidTransform& base_T_camera_optical,
                                       const std::vector<Vec2>& pixels, double plane_z, std::string& error)
 {
+  if (!std::isfinite(plane_z))
+  {
+    error = cameraLensProblem(camera);
+    if (error.empty())
+    {
+      error = "floor plane height is not finite";
+    }
+    return {};
+  }
+  return cameraPixelsOnPlane(camera, base_T_camera_optical, pixels, Plane{Vec3{0.0, 0.0, 1.0}, plane_z}, error);
+}
+
+std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const RigidTransform& base_T_camera_optical,
+                                      const std::vector<Vec2>& pixels, const Plane& plane, std::string& error)
+{
   error = cameraLensProblem(camera);
   if (error.empty() && !finiteTransform(base_T_camera_optical))
   {
     error = "camera pose (base_T_camera_optical) is not finite";
   }
-  if (error.empty() && !std::isfinite(plane_z))
+  if (error.empty() && !(isFinite(plane.normal) && std::isfinite(plane.offset) &&
+                         std::abs(norm(plane.normal) - 1.0) <= 1e-6))
   {
-    error = "floor plane height is not finite";
+    error = "the plane is not finite or its normal is not of unit length";
   }
   if (!error.empty())
   {
@@ -204,6 +220,8 @@ std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const Rigid
     normalised = distortion.undistort(normalised);
   }
   const Vec3 origin = base_T_camera_optical.translation();
+  const Vec3& n = plane.normal;
+  const double origin_height = n.x * origin.x + n.y * origin.y + n.z * origin.z - plane.offset;
   std::vector<Vec3> out(pixels.size(), Vec3{kNaN, kNaN, kNaN});
   for (std::size_t i = 0; i < pixels.size(); ++i)
   {
@@ -212,16 +230,21 @@ std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const Rigid
       continue;
     }
     const Vec3 d = base_T_camera_optical.rotate(Vec3{normalised[i].x, normalised[i].y, 1.0});
-    if (std::abs(d.z) < 1e-9 * norm(d))
+    const double along = n.x * d.x + n.y * d.y + n.z * d.z;
+    if (std::abs(along) < 1e-9 * norm(d))
     {
       continue;  // parallel to the plane
     }
-    const double s = (plane_z - origin.z) / d.z;
+    const double s = -origin_height / along;
     if (!(s > 0.0))
     {
       continue;  // behind the camera (or the camera is on the plane)
     }
-    out[i] = Vec3{origin.x + s * d.x, origin.y + s * d.y, plane_z};
+    out[i] = Vec3{origin.x + s * d.x, origin.y + s * d.y, origin.z + s * d.z};
+    if (n.x == 0.0 && n.y == 0.0)
+    {
+      out[i].z = plane.offset / n.z;  // exactly on a horizontal plane
+    }
   }
   return out;
 }
@@ -400,7 +423,8 @@ Correspondences floorCorrespondences(const GrayDecodeResult& decoded, const Lens
     cells.push_back(c);
   }
   const std::vector<Vec3> floor =
-      cameraPixelsOnPlane(camera, base_T_camera_optical, camera_points, options.plane_z, result.error);
+      options.plane ? cameraPixelsOnPlane(camera, base_T_camera_optical, camera_points, *options.plane, result.error)
+                    : cameraPixelsOnPlane(camera, base_T_camera_optical, camera_points, options.plane_z, result.error);
   if (!result.error.empty())
   {
     return result;

@@ -318,3 +318,55 @@ GrayDecodeResult decodeGrayCode(int projector_width, int projector_height, const
   return result;
 }
 }  // namespace rviz_projector
+
+namespace rviz_projector
+{
+GrayDecodeResult restrictDecode(const GrayDecodeResult& decoded, const cv::Mat& keep)
+{
+  GrayDecodeResult out;
+  if (!decoded.error.empty())
+  {
+    out.error = decoded.error;
+    return out;
+  }
+  if (keep.type() != CV_8UC1 || keep.size() != decoded.projector.size() || decoded.bits.size() != keep.size())
+  {
+    out.error = "the pixel mask is not CV_8UC1 of the captures' size";
+    return out;
+  }
+  out.lit = decoded.lit;
+  out.saturated = decoded.saturated;
+  out.decoded = decoded.decoded;
+  out.full = decoded.full;
+  out.projector = decoded.projector.clone();
+  out.bits = decoded.bits.clone();
+  const cv::Vec2f nan(std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::quiet_NaN());
+  for (int y = 0; y < keep.rows; ++y)
+  {
+    const uchar* k = keep.ptr<uchar>(y);
+    cv::Vec2f* projector = out.projector.ptr<cv::Vec2f>(y);
+    cv::Vec2b* bits = out.bits.ptr<cv::Vec2b>(y);
+    for (int x = 0; x < keep.cols; ++x)
+    {
+      if (k[x] == 0)
+      {
+        projector[x] = nan;
+        bits[x] = cv::Vec2b(0, 0);
+      }
+    }
+  }
+  const auto kept = [&](double x, double y) {
+    const int ix = int(x), iy = int(y);
+    return ix >= 0 && iy >= 0 && ix < keep.cols && iy < keep.rows && keep.at<uchar>(iy, ix) != 0;
+  };
+  for (const StripeEdge& e : decoded.edges)
+  {
+    if (std::isfinite(e.x) && std::isfinite(e.y) && kept(std::floor(e.x), std::floor(e.y)) &&
+        kept(std::ceil(e.x), std::ceil(e.y)))
+    {
+      out.edges.push_back(e);
+    }
+  }
+  return out;
+}
+}  // namespace rviz_projector

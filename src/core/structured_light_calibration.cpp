@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <string>
 
+#include <opencv2/core.hpp>
+
 #include "rviz_projector/core/camera_floor.h"
 
 namespace rviz_projector
@@ -54,7 +56,24 @@ CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, c
                    "on the floor (raise --settle)";
     return result;
   }
-  const Correspondences found = floorCorrespondences(decoded, input.camera, input.floor_T_camera, w, h);
+  if (input.board)
+  {
+    result.board = findBoard(captures[0], input.camera, input.floor_T_camera, *input.board);
+    if (!result.board.error.empty())
+    {
+      result.error = result.board.error;
+      return result;
+    }
+  }
+  // Without a board every decoded pixel is on the floor; with one, those near it are not.
+  cv::Mat away_from_board;
+  if (input.board)
+  {
+    cv::bitwise_not(result.board.near_board, away_from_board);
+  }
+  const Correspondences found =
+      input.board ? floorCorrespondences(restrictDecode(decoded, away_from_board), input.camera, input.floor_T_camera, w, h)
+                  : floorCorrespondences(decoded, input.camera, input.floor_T_camera, w, h);
   if (!found.error.empty())
   {
     result.error = found.error;
@@ -62,9 +81,32 @@ CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, c
   }
   result.correspondences = found.points.size();
   result.coverage = found.coverage;
-  if (found.coverage < limits.min_coverage)
+  Correspondences on_board;
+  if (input.board)
   {
-    result.error = "the camera sees only " + percent(found.coverage) + " of the projector's image on the floor (at least " +
+    CorrespondenceOptions board_options;
+    board_options.plane = result.board.plane;
+    on_board = floorCorrespondences(restrictDecode(decoded, result.board.on_board), input.camera,
+                                    input.floor_T_camera, w, h, board_options);
+    if (!on_board.error.empty())
+    {
+      result.error = on_board.error;
+      return result;
+    }
+    result.board_correspondences = on_board.points.size();
+    result.coverage += on_board.coverage;  // the board hides part of the floor from the camera
+    if (on_board.points.size() < std::size_t(limits.min_board_points))
+    {
+      result.error = "the camera sees only " + std::to_string(on_board.points.size()) +
+                     " decoded projector cells on the checkerboard (at least " +
+                     std::to_string(limits.min_board_points) + " needed): put it where the projector lights it, "
+                     "nearer the camera, or use a larger board";
+      return result;
+    }
+  }
+  if (result.coverage < limits.min_coverage)
+  {
+    result.error = "the camera sees only " + percent(result.coverage) + " of the projector's image on the floor (at least " +
                    percent(limits.min_coverage) + " needed for a sound solve): move the camera or the robot";
     return result;
   }
@@ -75,6 +117,21 @@ CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, c
   if (!result.solution.ok)
   {
     result.error = "no solution: " + result.solution.error;
+    return result;
+  }
+  if (input.board)
+  {
+    TwoPlaneLensOptions lens_options;
+    lens_options.fit_distortion = input.fit_distortion;
+    lens_options.min_board_points = limits.min_board_points;
+    result.lens_fit = fitLensOnTwoPlanes(input.lens, result.solution.distortion, result.solution.parent_T_optical,
+                                         found.points, on_board.points, lens_options);
+    if (!result.lens_fit.ok)
+    {
+      result.error = "no lens from the board: " + result.lens_fit.error;
+      return result;
+    }
+    result.lens_fitted = true;
   }
   return result;
 }

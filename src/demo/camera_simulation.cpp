@@ -67,9 +67,7 @@ void checkMount(const MountPose& m, const std::string& name, std::ostringstream&
     problems << name << " x y z roll pitch yaw must be finite. ";
   }
 }
-}  // namespace
-
-cv::Matx33d opticalRotation(const MountPose& mount)
+cv::Matx33d mountRotation(const MountPose& mount)
 {
   const double cr = std::cos(mount.roll), sr = std::sin(mount.roll);
   const double cp = std::cos(mount.pitch), sp = std::sin(mount.pitch);
@@ -77,9 +75,71 @@ cv::Matx33d opticalRotation(const MountPose& mount)
   const cv::Matx33d rz(cy, -sy, 0.0, sy, cy, 0.0, 0.0, 0.0, 1.0);
   const cv::Matx33d ry(cp, 0.0, sp, 0.0, 1.0, 0.0, -sp, 0.0, cp);
   const cv::Matx33d rx(1.0, 0.0, 0.0, 0.0, cr, -sr, 0.0, sr, cr);
+  return rz * ry * rx;
+}
+
+/// The board's geometry: where a ray meets it, and its print.
+struct BoardGeometry
+{
+  BoardSettings settings;
+  cv::Matx33d r;  ///< columns: the board's axes in the base frame
+  cv::Vec3d centre;
+
+  explicit BoardGeometry(const BoardSettings& b)
+    : settings(b), r(mountRotation(b.pose)), centre(b.pose.x, b.pose.y, b.pose.z)
+  {
+  }
+  cv::Vec3d normal() const { return cv::Vec3d(r(0, 2), r(1, 2), r(2, 2)); }
+
+  /// Albedo at board coordinates relative to its centre; -1 off the board.
+  double albedo(double x, double y) const
+  {
+    const BoardSettings& b = settings;
+    // Coordinates from the first inner corner.
+    const double u = x + 0.5 * (b.cols - 1) * b.square, v = y + 0.5 * (b.rows - 1) * b.square;
+    const double lo = -b.square - b.margin;
+    if (u < lo || v < lo || u > b.cols * b.square + b.margin || v > b.rows * b.square + b.margin)
+    {
+      return -1.0;
+    }
+    if (u < -b.square || v < -b.square || u >= b.cols * b.square || v >= b.rows * b.square)
+    {
+      return b.white;
+    }
+    const int i = static_cast<int>(std::floor(u / b.square)) + 1, j = static_cast<int>(std::floor(v / b.square)) + 1;
+    return (i + j) % 2 == 0 ? b.black : b.white;
+  }
+
+  /// origin + t direction on the board (t > 0): t and the albedo there; false if it misses.
+  bool hit(const cv::Vec3d& origin, const cv::Vec3d& direction, double& t, double& albedo_out) const
+  {
+    if (!settings.present)
+    {
+      return false;
+    }
+    const cv::Vec3d n = normal();
+    const double along = n.dot(direction);
+    if (std::abs(along) < 1e-12)
+    {
+      return false;
+    }
+    t = n.dot(centre - origin) / along;
+    if (!(t > 0.0))
+    {
+      return false;
+    }
+    const cv::Vec3d local = r.t() * (origin + t * direction - centre);
+    albedo_out = albedo(local[0], local[1]);
+    return albedo_out >= 0.0;
+  }
+};
+}  // namespace
+
+cv::Matx33d opticalRotation(const MountPose& mount)
+{
   // Columns: optical x = -body y, optical y = -body z, optical z = body x.
   const cv::Matx33d body_optical(0.0, 0.0, 1.0, -1.0, 0.0, 0.0, 0.0, -1.0, 0.0);
-  return rz * ry * rx * body_optical;
+  return mountRotation(mount) * body_optical;
 }
 
 std::string checkSettings(const CameraSimulationSettings& s)
@@ -104,6 +164,18 @@ std::string checkSettings(const CameraSimulationSettings& s)
   if (!finite(s.ambient) || s.ambient < 0.0 || s.ambient > 1.0)
   {
     problems << "ambient must be in [0, 1] (" << s.ambient << "). ";
+  }
+  if (s.board.present)
+  {
+    const BoardSettings& b = s.board;
+    checkMount(b.pose, "board", problems);
+    if (b.cols < 3 || b.rows < 3 || b.cols > 50 || b.rows > 50 || !finite(b.square) || b.square < 0.005 ||
+        b.square > 0.5 || !finite(b.margin) || b.margin < 0.0 || b.margin > 1.0 || !finite(b.white) ||
+        !finite(b.black) || b.white < 0.0 || b.white > 1.0 || b.black < 0.0 || b.black > 1.0)
+    {
+      problems << "the board needs 3..50 inner corners each way, a square of 0.005..0.5 m, a margin of 0..1 m and "
+                  "albedos in [0, 1]. ";
+    }
   }
   if (!finite(s.gain) || s.gain < 0.0 || s.gain > 10.0)
   {
@@ -235,6 +307,8 @@ void CameraSimulation::buildMaps(const cv::Size& projector_size)
   }
   max_radius2 *= 1.05 * 1.05;
 
+  const BoardGeometry board(settings_.board);
+  albedo_ = board.settings.present ? cv::Mat(sub_height, sub_width, CV_32FC1, cv::Scalar(1.0)) : cv::Mat();
   cv::Mat map_x(sub_height, sub_width, CV_32FC1, cv::Scalar(kOutside));
   cv::Mat map_y(sub_height, sub_width, CV_32FC1, cv::Scalar(kOutside));
   std::vector<cv::Point2d> pixels(static_cast<std::size_t>(sub_width));
@@ -269,12 +343,25 @@ void CameraSimulation::buildMaps(const cv::Size& projector_size)
       const std::size_t i = static_cast<std::size_t>(col);
       residual = std::max(residual, cv::norm(back[i] - pixels[i]));
       const cv::Vec3d direction = camera_r * cv::Vec3d(rays[i].x, rays[i].y, 1.0);
-      if (!(direction[2] < -1e-9))
+      double t = direction[2] < -1e-9 ? -camera_c[2] / direction[2] : HUGE_VAL;  // the floor, if below the horizon
+      double board_t = 0.0, albedo = 1.0;
+      const bool on_board = board.hit(camera_c, direction, board_t, albedo) && board_t < t;
+      if (on_board)
+      {
+        t = board_t;
+        albedo_.at<float>(row, col) = static_cast<float>(albedo);
+      }
+      if (!std::isfinite(t))
       {
         continue;  // at or above the horizon: no floor
       }
-      const double t = -camera_c[2] / direction[2];
       const cv::Vec3d point = camera_c + t * direction;
+      double shadow_t = 0.0, shadow_albedo = 0.0;
+      if (on_board ? board.normal().dot(projector_c - point) * board.normal().dot(camera_c - point) <= 0.0
+                   : board.hit(projector_c, point - projector_c, shadow_t, shadow_albedo) && shadow_t < 1.0 - 1e-9)
+      {
+        continue;  // the board lit from behind, or the floor in its shadow
+      }
       const cv::Vec3d q = world_to_projector * (point - projector_c);
       if (!(q[2] > 1e-9))
       {
@@ -285,7 +372,7 @@ void CameraSimulation::buildMaps(const cv::Size& projector_size)
       {
         continue;  // outside the projector lens' field of view
       }
-      floor.emplace_back(point[0], point[1], 0.0);
+      floor.emplace_back(point[0], point[1], on_board ? point[2] : 0.0);
       columns.push_back(col);
     }
     if (floor.empty())
@@ -354,10 +441,20 @@ cv::Mat CameraSimulation::renderClean(const cv::Mat& luminance)
     cv::remap(luminance, lit, map1_(lit_rect_), map2_(lit_rect_), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
               cv::Scalar(0));
   }
-  cv::Mat mean;
-  // An integer factor: INTER_AREA is the exact mean of each pixel's sub-pixels.
-  cv::resize(sub_, mean, cv::Size(settings_.width, settings_.height), 0.0, 0.0, cv::INTER_AREA);
-  mean.convertTo(clean, CV_32F, settings_.gain, ambient);
+  if (!albedo_.empty())
+  {
+    // With a board: the light of each sub-pixel times its albedo, then the pixel mean.
+    cv::Mat light;
+    sub_.convertTo(light, CV_32F, settings_.gain, ambient);
+    cv::resize(light.mul(albedo_), clean, cv::Size(settings_.width, settings_.height), 0.0, 0.0, cv::INTER_AREA);
+  }
+  else
+  {
+    cv::Mat mean;
+    // An integer factor: INTER_AREA is the exact mean of each pixel's sub-pixels.
+    cv::resize(sub_, mean, cv::Size(settings_.width, settings_.height), 0.0, 0.0, cv::INTER_AREA);
+    mean.convertTo(clean, CV_32F, settings_.gain, ambient);
+  }
   if (settings_.blur > 0.0)
   {
     cv::GaussianBlur(clean, clean, cv::Size(0, 0), settings_.blur, settings_.blur, cv::BORDER_REPLICATE);

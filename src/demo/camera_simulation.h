@@ -26,8 +26,13 @@
 // rounded and clipped to 8 bits. A camera ray that misses the floor (above the horizon), a floor
 // point behind the projector, outside its image, or outside the projector lens' own field of view
 // (1.05 x the largest undistorted radius of its image border: beyond it a polynomial lens model
-// may fold back into the image) is unlit: ambient only. No occlusion, no light falloff with
-// distance or angle (the calibration only uses where light falls, not how bright).
+// may fold back into the image) is unlit: ambient only. No light falloff with distance or angle (the
+// calibration only uses where light falls, not how bright).
+//
+// Optionally a printed checkerboard stands in the scene (BoardSettings, for calibrate_projector
+// --board): a camera ray meets it before the floor behind it; the floor behind it as seen from the
+// projector is in its shadow; its face lit only from its printed side; what it reflects is scaled
+// by its albedo (white squares and margin, black squares) per sub-pixel. Plain ray-plane maths.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -61,6 +66,23 @@ struct LensParameters
   std::vector<double> D;
 };
 
+/// A printed checkerboard in the scene: its centre (the middle of its inner corners) and
+/// orientation in the base frame as a mount (R = Rz(yaw) Ry(pitch) Rx(roll)); its own x along the
+/// corner columns, y along the rows, z out of its printed face (roll = pitch = yaw = 0: flat on its
+/// back, face up; pitch -0.785: standing 45 deg, facing -x). cols x rows inner corners, squares of
+/// `square` metres, a white `margin` (metres) around the squares.
+struct BoardSettings
+{
+  bool present = false;
+  MountPose pose;
+  int cols = 7;
+  int rows = 5;
+  double square = 0.06;
+  double margin = 0.03;
+  double white = 0.85;  ///< albedo of the white squares and the margin (the floor's is 1)
+  double black = 0.08;
+};
+
 /// R_base_optical: columns are the optical frame's axes in the base frame.
 cv::Matx33d opticalRotation(const MountPose& mount);
 
@@ -79,11 +101,13 @@ struct CameraSimulationSettings
   double gain = 0.7;
   double blur = 1.0;      ///< Gaussian blur sigma, camera pixels (0: none)
   double noise = 2.0 / 255.0;  ///< Gaussian noise sigma, grey levels / 255
+  BoardSettings board;         ///< none unless present
 };
 
 /// "" when usable, else one sentence per problem (finite numbers, positive focal lengths, D of 0, 4,
 /// 5 or 8 values, image size 1..8192, supersampling 1..4, ambient in [0, 1], blur and noise >= 0,
-/// a camera above the floor).
+/// a camera above the floor; a board's corners 3..50 each way, square 0.005..0.5 m, margin 0..1 m,
+/// albedos in [0, 1], its pose finite).
 std::string checkSettings(const CameraSimulationSettings& settings);
 
 /// The projector image's luminance (CV_8UC1, a copy): mono8 as is; rgb8/bgr8/rgba8/bgra8 as
@@ -122,6 +146,7 @@ private:
   cv::Mat map2_;
   cv::Rect lit_rect_;  // the sub-pixels that can see the projector (whole camera pixels)
   cv::Mat sub_;        // the supersampled luminance, black outside lit_rect_
+  cv::Mat albedo_;     // with a board: CV_32FC1 supersampled albedo (1 on the floor), else empty
   double undistortion_residual_ = -1.0;
   double lit_fraction_ = 0.0;
 };

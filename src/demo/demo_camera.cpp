@@ -40,6 +40,10 @@
 //   pixel adds, 0..10; ambient + gain above 1 saturates), ~blur 1.0 (Gaussian sigma,
 //   pixels), ~noise 0.00784 (= 2/255, Gaussian sigma in grey levels / 255), ~seed 1 (of the noise),
 //   ~supersampling 3 (sub-pixels per pixel and axis), ~exposure_delay 0.05 s (0..2).
+//   A checkerboard for calibrate_projector --board (default none): ~board_pose [x, y, z, roll, pitch,
+//     yaw] of its centre in ~base_frame (roll = pitch = yaw = 0 lies face up; pitch -0.785 stands
+//     45 deg facing the robot), ~board_corners [7, 5] (inner corners), ~board_square 0.06 m,
+//     ~board_margin 0.03 m (white around the squares); see camera_simulation.h.
 //   A parameter that does not make sense stops the node with a ROS_FATAL saying which.
 // Cost (2-core VM, defaults, 1280x800 rgb8 projector images at 30 Hz): about 40 % of a core when
 // every image differs (one remap of the lit part of the 1920x1440 sub-pixel grid, ~8 ms), about
@@ -154,7 +158,25 @@ Options readOptions(const ros::NodeHandle& pnh, std::string& problems)
   s.gain = p.param("gain", 0.7);
   s.blur = p.param("blur", 1.0);
   s.noise = p.param("noise", 2.0 / 255.0);
+  const std::vector<double> board_pose = p.param("board_pose", std::vector<double>{});
+  const std::vector<int> board_corners = p.param("board_corners", std::vector<int>{7, 5});
+  s.board.square = p.param("board_square", 0.06);
+  s.board.margin = p.param("board_margin", 0.03);
   problems = p.problems();
+  if (!board_pose.empty())
+  {
+    if (board_pose.size() != 6 || board_corners.size() != 2)
+    {
+      problems += "~board_pose must be [x, y, z, roll, pitch, yaw] and ~board_corners [cols, rows]. ";
+    }
+    else
+    {
+      s.board.present = true;
+      s.board.pose = MountPose{board_pose[0], board_pose[1], board_pose[2], board_pose[3], board_pose[4], board_pose[5]};
+      s.board.cols = board_corners[0];
+      s.board.rows = board_corners[1];
+    }
+  }
   return o;
 }
 

@@ -267,5 +267,40 @@ TEST(GrayCodeDecode, NothingLitDecodesNothingAndSaturationIsCounted)
   EXPECT_GT(bright.saturated, bright.lit / 2);
   EXPECT_GT(bright.decoded, bright.lit * 8 / 10);
 }
+
+TEST(GrayCode, RestrictDecodeKeepsOnlyTheMaskedPixelsAndTheirEdges)
+{
+  GrayDecodeResult d;
+  d.projector = cv::Mat(2, 4, CV_32FC2, cv::Scalar(10.0f, 20.0f));
+  d.bits = cv::Mat(2, 4, CV_8UC2, cv::Scalar(5, 6));
+  d.lit = d.decoded = d.full = 8;
+  StripeEdge inside;  // between pixels (0, 0) and (1, 0)
+  inside.x = 0.4f;
+  StripeEdge across;  // between (1, 0) and (2, 0): (2, 0) is masked out
+  across.x = 1.6f;
+  StripeEdge outside;  // between (2, 1) and (3, 1)
+  outside.x = 2.5f;
+  outside.y = 1.0f;
+  d.edges = {inside, across, outside};
+  cv::Mat keep = cv::Mat::zeros(2, 4, CV_8UC1);
+  keep(cv::Rect(0, 0, 2, 2)).setTo(255);  // the left half
+  const GrayDecodeResult r = restrictDecode(d, keep);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.lit, 8);
+  for (int y = 0; y < 2; ++y)
+  {
+    for (int x = 0; x < 4; ++x)
+    {
+      const bool kept = x < 2;
+      EXPECT_EQ(std::isfinite(r.projector.at<cv::Vec2f>(y, x)[0]), kept) << x << "," << y;
+      EXPECT_EQ(r.bits.at<cv::Vec2b>(y, x)[0], kept ? 5 : 0) << x << "," << y;
+    }
+  }
+  ASSERT_EQ(r.edges.size(), 1u);
+  EXPECT_FLOAT_EQ(r.edges[0].x, 0.4f);
+  // The original is untouched; a mask of another size is an error.
+  EXPECT_TRUE(std::isfinite(d.projector.at<cv::Vec2f>(0, 3)[0]));
+  EXPECT_FALSE(restrictDecode(d, cv::Mat::zeros(3, 4, CV_8UC1)).error.empty());
+}
 }  // namespace
 }  // namespace rviz_projector

@@ -6,6 +6,10 @@
 // base frame -> floor z = 0 -> cv::projectPoints (true projector pose, K, D) -> the pattern's pixel
 // there (nearest; dark outside the image). Captured value = 255 (ambient + gain * mean lit), then a
 // Gaussian blur (camera optics) and Gaussian noise (fixed seed), rounded and saturated to 8 bits.
+// Optionally a checkerboard stands on the floor (Scene::board, for --board): a rectangle at a pose,
+// printed with albedo (white squares and margin 0.85, black 0.08) that scales the light it
+// reflects; a ray meets it before the floor behind it, and it shadows the floor from the projector.
+// Plain ray-rectangle maths, written here.
 #pragma once
 
 #include <array>
@@ -60,6 +64,82 @@ inline Pose mountPose(double x, double y, double z, double roll, double pitch, d
   return pose;
 }
 
+/// A printed checkerboard: its frame (x along the corner columns, y along the rows, z its normal)
+/// in the base frame with the origin at the first inner corner; inner corners cols x rows, squares
+/// of `square` metres from (-square, -square) to (cols square, rows square), a white margin around.
+struct Board
+{
+  bool present = false;
+  Pose pose;
+  int cols = 7;
+  int rows = 5;
+  double square = 0.06;
+  double margin = 0.03;
+  double white = 0.85;
+  double black = 0.08;
+
+  /// Albedo at board coordinates (x, y); -1 off the board.
+  double albedo(double x, double y) const
+  {
+    const double lo = -square - margin;
+    if (x < lo || y < lo || x > cols * square + margin || y > rows * square + margin)
+    {
+      return -1.0;
+    }
+    if (x < -square || y < -square || x >= cols * square || y >= rows * square)
+    {
+      return white;
+    }
+    const int i = int(std::floor(x / square)) + 1, j = int(std::floor(y / square)) + 1;
+    return (i + j) % 2 == 0 ? black : white;
+  }
+
+  /// Ray origin + s direction meets the board (s > 0): s, and the board coordinates; false if not.
+  bool hit(const cv::Vec3d& origin, const cv::Vec3d& direction, double& s, double& x, double& y) const
+  {
+    if (!present)
+    {
+      return false;
+    }
+    const cv::Vec3d n(pose.R(0, 2), pose.R(1, 2), pose.R(2, 2));
+    const double along = n.dot(direction);
+    if (std::abs(along) < 1e-12)
+    {
+      return false;
+    }
+    s = n.dot(pose.t - origin) / along;
+    if (!(s > 0.0))
+    {
+      return false;
+    }
+    const cv::Vec3d local = pose.R.t() * (origin + s * direction - pose.t);
+    x = local[0];
+    y = local[1];
+    return albedo(x, y) >= 0.0;
+  }
+};
+
+/// A board of `cols` x `rows` inner corners standing on the floor tilted `tilt` (radians) from it,
+/// its centre `ahead` metres ahead of the base origin at lateral offset `side`, facing the robot
+/// (its normal towards -x and up), its lowest edge 1 cm above the floor.
+inline Board standingBoard(double ahead, double side, double tilt, int cols = 7, int rows = 5, double square = 0.06)
+{
+  Board b;
+  b.present = true;
+  b.cols = cols;
+  b.rows = rows;
+  b.square = square;
+  // x across (base -y), y up the slope and away (cos tilt, 0, sin tilt), z = x cross y.
+  const cv::Vec3d bx(0.0, -1.0, 0.0), by(std::cos(tilt), 0.0, std::sin(tilt)), bz = bx.cross(by);
+  b.pose.R = cv::Matx33d(bx[0], by[0], bz[0], bx[1], by[1], bz[1], bx[2], by[2], bz[2]);
+  const double low = -square - b.margin;  // the lowest board y
+  const double centre_y = 0.5 * (rows - 1) * square;
+  const double centre_z = 0.01 + (centre_y - low) * std::sin(tilt);
+  const cv::Vec3d centre(ahead, side, centre_z);
+  b.pose.t = centre - bx * (0.5 * (cols - 1) * square) - by * centre_y;
+  return b;
+}
+
 struct Scene
 {
   Lens projector;
@@ -71,6 +151,7 @@ struct Scene
   double gain = 0.7;        ///< full-scale fraction added by a white projector pixel
   double blur_sigma = 1.0;  ///< camera pixels
   double noise_sigma = 2.0; ///< grey levels
+  Board board;              ///< none unless present
 };
 
 /// The demo's projector (1280x800, fx = fy = 1900, cx = 640, cy = 750) 1.2 m up, 0.15 m ahead,
@@ -136,15 +217,39 @@ public:
     std::vector<cv::Point3d> floor;
     std::vector<std::size_t> which;
     const cv::Matx33d p_r = scene.projector_pose.R.t();
+    albedo_.assign(raw.size(), 1.0f);
+    const Board& board = scene.board;
     for (std::size_t k = 0; k < normalised.size(); ++k)
     {
       const cv::Vec3d d = scene.camera_pose.R * cv::Vec3d(normalised[k].x, normalised[k].y, 1.0);
-      const double s = -scene.camera_pose.t[2] / d[2];
-      if (!(d[2] < 0.0) || !(s > 0.0))
+      double s = -scene.camera_pose.t[2] / d[2];
+      double bs = 0.0, bx = 0.0, by = 0.0;
+      const bool on_board = board.hit(scene.camera_pose.t, d, bs, bx, by) && (!(d[2] < 0.0) || bs < s);
+      if (on_board)
+      {
+        s = bs;
+        albedo_[k] = float(board.albedo(bx, by));
+      }
+      else if (!(d[2] < 0.0) || !(s > 0.0))
       {
         continue;
       }
       const cv::Vec3d p = scene.camera_pose.t + s * d;
+      // The projector's light: the board's face towards it, and no board between it and the floor.
+      const cv::Vec3d to_point = p - scene.projector_pose.t;
+      double ps = 0.0, px = 0.0, py = 0.0;
+      if (on_board)
+      {
+        const cv::Vec3d n(board.pose.R(0, 2), board.pose.R(1, 2), board.pose.R(2, 2));
+        if (n.dot(scene.projector_pose.t - p) * n.dot(scene.camera_pose.t - p) <= 0.0)
+        {
+          continue;  // lit from behind
+        }
+      }
+      else if (board.hit(scene.projector_pose.t, to_point, ps, px, py) && ps < 1.0 - 1e-9)
+      {
+        continue;  // in the board's shadow
+      }
       // In front of the projector and within a sane field (its distortion polynomial is only
       // meaningful near the image).
       const cv::Vec3d q = p_r * (p - scene.projector_pose.t);
@@ -189,12 +294,12 @@ public:
       float* row = light.ptr<float>(y);
       for (int x = 0; x < w; ++x)
       {
-        int sum = 0;
+        double sum = 0.0;
         for (int s = 0; s < ss2; ++s, ++k)
         {
-          sum += index_[k] >= 0 ? p[index_[k]] : 0;
+          sum += albedo_[k] * (scene_.ambient + scene_.gain * (index_[k] >= 0 ? p[index_[k]] : 0) / 255.0);
         }
-        row[x] = float(255.0 * (scene_.ambient + scene_.gain * sum / (255.0 * ss2)));
+        row[x] = float(255.0 * sum / ss2);
       }
     }
     if (scene_.blur_sigma > 0.0)
@@ -216,6 +321,7 @@ public:
 private:
   Scene scene_;
   std::vector<int> index_;  ///< per sub-sample: projector pixel index, -1 where unlit
+  std::vector<float> albedo_;  ///< per sub-sample: 1 on the floor, the board's print on it
 };
 /// The camera of demoScene(wide_angle_projector), traced once per test process and lens (tracing
 /// 640x480 x 16 sub-pixels is the slow part, several seconds under the sanitizers); withLight()

@@ -360,6 +360,16 @@ TEST(DemoCamera, NonsenseParametersStopTheNodeWithAReason)
   {
     EXPECT_NE(range.second.find(text), std::string::npos) << text << " in: " << range.second;
   }
+  ros::param::set("/demo_camera_board/board_pose", std::vector<double>{1.0, 0.0, 0.2});
+  const auto board_pose = runNode("demo_camera_board");
+  EXPECT_EQ(board_pose.first, 1) << board_pose.second;
+  EXPECT_NE(board_pose.second.find("~board_pose must be [x, y, z, roll, pitch, yaw]"), std::string::npos)
+      << board_pose.second;
+  ros::param::set("/demo_camera_board_size/board_pose", std::vector<double>{1.0, 0.0, 0.2, 0.0, -0.7, 0.0});
+  ros::param::set("/demo_camera_board_size/board_square", 2.0);
+  const auto board_size = runNode("demo_camera_board_size");
+  EXPECT_EQ(board_size.first, 1) << board_size.second;
+  EXPECT_NE(board_size.second.find("the board needs 3..50 inner corners"), std::string::npos) << board_size.second;
   ros::param::set("/demo_camera_type/fx", std::string("wide"));
   ros::param::set("/demo_camera_type/projector_D", std::string("none"));
   const auto type = runNode("demo_camera_type");

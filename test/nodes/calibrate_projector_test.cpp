@@ -593,6 +593,10 @@ TEST(CalibrateProjectorUsage, BadCommandLinesExitTwo)
       {"--camera", "--camera-info", kPa503w, "--image", ""},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--settle", "0.2"},
       {"--camera-info", kPa503w, "--points", "points.yaml", "--keep-distortion"},
+      {"--camera-info", kPa503w, "--points", "points.yaml", "--board", "7x5:0.06"},
+      {"--camera", "--camera-info", kPa503w, "--board", "7x5"},
+      {"--camera", "--camera-info", kPa503w, "--board", "7x5:60"},
+      {"--camera", "--camera-info", kPa503w, "--board"},
   };
   for (const auto& args : command_lines)
   {

@@ -14,7 +14,10 @@ calibrate_projector binary and judges what it writes:
     pinhole, OpenCV's distortion model inverted by iteration, the mount convention of
     projector.launch);
   - the refusals: no projector on the Pattern topic, no tf to the floor frame, a camera that sees
-    none of the projection: exit status 1, one clear message, nothing written.
+    none of the projection: exit status 1, one clear message, nothing written;
+  - --board: a third demo_camera sees a checkerboard standing 45 deg in the lit patch; from a
+    calibration file whose fx, fy are 3 % and cx, cy 15 px off, the written K and P come out near the
+    truth (fx, fy within 0.3 %, cx, cy within 3 px) and the floor error stays within 1 / 3 mm.
 
 The oracle is the truth the .test file hands demo_camera, never the code under test.
 """
@@ -82,9 +85,11 @@ def rotation(roll, pitch, yaw):
             [-sp, cp * sr, cp * cr]]
 
 
-def floor_point(mount, d, u, v):
-    """Where projector pixel (u, v) lands on the floor z = 0, or None (ray not going down)."""
-    x, y = undistort((u - CX) / FX, (v - CY) / FY, d)
+def floor_point(mount, d, u, v, lens=(FX, FY, CX, CY)):
+    """Where projector pixel (u, v) lands on the floor z = 0 through `lens` (fx, fy, cx, cy), or None
+    (ray not going down)."""
+    fx, fy, cx, cy = lens
+    x, y = undistort((u - cx) / fx, (v - cy) / fy, d)
     body = (1.0, -x, -y)  # optical (x right, y down, z ahead) in the body frame (x ahead, z up)
     r = rotation(mount["roll"], mount["pitch"], mount["yaw"])
     ray = [sum(r[i][j] * body[j] for j in range(3)) for i in range(3)]
@@ -97,13 +102,18 @@ def floor_point(mount, d, u, v):
 def floor_errors_mm(mount, d):
     """Distances between the true and the calibrated floor point of a 17 x 11 grid of projector
     pixels (edges included), mm."""
+    return floor_errors_with_lens(mount, d, (FX, FY, CX, CY))
+
+
+def floor_errors_with_lens(mount, d, lens):
+    """floor_errors_mm with the calibrated lens (fx, fy, cx, cy)."""
     errors = []
     for i in range(17):
         for j in range(11):
             u = i * (WIDTH - 1) / 16.0
             v = j * (HEIGHT - 1) / 10.0
             truth = floor_point(TRUE_MOUNT, TRUE_D, u, v)
-            fitted = floor_point(mount, d, u, v)
+            fitted = floor_point(mount, d, u, v, lens)
             if truth is None:
                 continue
             if fitted is None:
@@ -187,6 +197,43 @@ class CameraCalibrationTest(unittest.TestCase):
         took = re.search(r"Took ([0-9.]+) s", out)
         self.assertIsNotNone(took, "no 'Took' line in the report")
         print("calibration took %s s" % took.group(1))
+
+    def test_5_a_tilted_board_fits_the_lens(self):
+        # The file's lens off the truth: fx, fy 3 % more, cx, cy 15 px more (K and P).
+        with open(CALIBRATION) as f:
+            wrong = yaml.safe_load(f)
+        k = wrong["camera_matrix"]["data"]
+        k[0], k[4], k[2], k[5] = 1.03 * FX, 1.03 * FY, CX + 15.0, CY + 15.0
+        p = wrong["projection_matrix"]["data"]
+        p[0], p[5], p[2], p[6] = k[0], k[4], k[2], k[5]
+        wrong_file = os.path.join(self.tmp, "wrong_lens.yaml")
+        with open(wrong_file, "w") as f:
+            yaml.safe_dump(wrong, f)
+        mount_file, calibration_file = self.files("board")
+        rc, out, err = calibrate(["--camera", "--camera-info", wrong_file, "--image", "/board_camera/image_raw",
+                                  "--board", "7x5:0.06", "--output", mount_file, "--output-calibration",
+                                  calibration_file], timeout=150)
+        self.assertEqual(rc, 0, "calibrate_projector --board failed:\n%s\n%s\nhost:\n%s" % (out, err, self.host.log_tail()))
+        sys.stdout.write(out)
+        with open(mount_file) as f:
+            mount = yaml.safe_load(f)
+        with open(calibration_file) as f:
+            calibration = yaml.safe_load(f)
+        k = calibration["camera_matrix"]["data"]
+        p = calibration["projection_matrix"]["data"]
+        print("fitted fx %.2f fy %.2f cx %.2f cy %.2f (truth %.1f %.1f %.1f %.1f)" % (k[0], k[4], k[2], k[5], FX, FY, CX, CY))
+        self.assertAlmostEqual(k[0], FX, delta=0.003 * FX)
+        self.assertAlmostEqual(k[4], FY, delta=0.003 * FY)
+        self.assertAlmostEqual(k[2], CX, delta=3.0)
+        self.assertAlmostEqual(k[5], CY, delta=3.0)
+        self.assertEqual((p[0], p[2], p[5], p[6]), (k[0], k[2], k[4], k[5]), "P must be [K | 0]")
+        d = calibration["distortion_coefficients"]["data"]
+        self.assertAlmostEqual(d[0], TRUE_D[0], delta=0.01)
+        # The floor error of the written lens and mount against the truth (this oracle's own maths).
+        errors = floor_errors_with_lens(mount, d, (k[0], k[4], k[2], k[5]))
+        print("--board floor error: median %.2f mm, max %.2f mm" % (errors[len(errors) // 2], errors[-1]))
+        self.assertLessEqual(errors[len(errors) // 2], 1.0)
+        self.assertLessEqual(errors[-1], 3.0)
 
     def test_2_refuses_without_a_projector(self):
         rc, out, err, mount_file, calibration_file = self.run_calibration(

@@ -1,9 +1,11 @@
 // Command line of calibrate_projector (issue 12).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "rviz_projector/core/board_view.h"
 #include "rviz_projector/core/crosshair_pattern.h"
 #include "rviz_projector/core/mount_solver.h"
 
@@ -48,6 +50,8 @@ struct CalibrateOptions
   std::string projector_frame = "projector_optical_frame";  ///< --projector-frame: the current mount (a prior)
   double settle = 0.15;  ///< --settle SECONDS after the projector acknowledged a pattern, before a frame counts
   bool keep_distortion = false;  ///< --keep-distortion: --camera keeps the file's D instead of fitting k1, k2
+  /// --board COLSxROWS:SQUARE_M: --camera also fits fx, fy, cx, cy with a checkerboard tilted on the floor.
+  std::optional<BoardSpec> board;
 };
 
 /// Parses the arguments (without the program name). Returns "" or what is wrong with them.

@@ -9,6 +9,7 @@
 // images). A D whose radial map folds back before the image corner is refused (LensDistortion).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,19 @@ std::string cameraLensProblem(const LensCalibration& camera);
 std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const RigidTransform& base_T_camera_optical,
                                       const std::vector<Vec2>& pixels, double plane_z, std::string& error);
 
+/// A plane of the base frame: the points p with dot(normal, p) = offset (normal of unit length).
+struct Plane
+{
+  Vec3 normal{0.0, 0.0, 1.0};
+  double offset = 0.0;
+};
+
+/// cameraPixelsOnPlane on any plane (a tilted calibration board): as above, a ray parallel to it
+/// within 1e-9 or meeting it behind the camera gives NaN; a normal not of unit length (within 1e-6)
+/// or not finite is an error.
+std::vector<Vec3> cameraPixelsOnPlane(const LensCalibration& camera, const RigidTransform& base_T_camera_optical,
+                                      const std::vector<Vec2>& pixels, const Plane& plane, std::string& error);
+
 struct CorrespondenceOptions
 {
   /// Projector cell size, pixels: one correspondence per cell x cell block of projector pixels.
@@ -40,6 +54,8 @@ struct CorrespondenceOptions
   int min_samples = 3;
   /// The floor plane, base frame.
   double plane_z = 0.0;
+  /// Set: the points lie on this plane instead of z = plane_z (a tilted board, board_view.h).
+  std::optional<Plane> plane;
   /// Local fit radius, cells: a cell's camera point comes from least-squares affine maps camera pixel
   /// -> projector u (from the column stripe edges) and -> v (row stripe edges) fitted over the
   /// (2r + 1)^2 cells around it. 0: plain averaging of the cell's own decoded block centres (noisy and

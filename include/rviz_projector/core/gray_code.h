@@ -109,6 +109,13 @@ struct GrayDecodeResult
 GrayDecodeResult decodeGrayCode(int projector_width, int projector_height, const std::vector<cv::Mat>& captures,
                                 const GrayDecodeOptions& options = GrayDecodeOptions());
 
+/// The decode restricted to the camera pixels where `keep` (CV_8UC1, the captures' size) is non-zero:
+/// the others become undecoded (NaN, bits 0), and only the edges whose both neighbouring pixels
+/// (either side of its sub-pixel position along its row or column) are kept remain. The counts
+/// (lit, saturated, decoded, full) stay the original's. A `keep` of another size or type, or a
+/// decode with an error, gives an error.
+GrayDecodeResult restrictDecode(const GrayDecodeResult& decoded, const cv::Mat& keep);
+
 /// Width of the block of projector pixels fixed by the top `bits` of an axis of `total` bits
 /// (2^(total - bits)); the coordinate's uncertainty is +- half of it.
 inline int grayBlockWidth(int total_bits, int bits) { return 1 << (total_bits - bits); }

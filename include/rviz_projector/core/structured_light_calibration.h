@@ -6,20 +6,30 @@
 //                           (camera_floor.h)
 //   solveMountDense      -> the mount and k1, k2; fx, fy, cx, cy kept (a flat floor cannot pin them)
 //                           (dense_mount_solver.h)
+// and with a board (calibrate_projector --board):
+//   findBoard            -> a checkerboard propped up tilted on the floor, found in the white frame:
+//                           its plane and the camera pixels on it / near it (board_view.h)
+//   floorCorrespondences -> twice: the pixels on the board met with its plane, those away from it
+//                           with the floor
+//   fitLensOnTwoPlanes   -> fx, fy, cx, cy with the mount and k1, k2 (two_plane_lens_fit.h), from
+//                           the dense floor solution
 // with a refusal, one sentence, at the first step that cannot give a sound answer.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "rviz_projector/core/board_view.h"
 #include "rviz_projector/core/dense_mount_solver.h"
 #include "rviz_projector/core/gray_code.h"
 #include "rviz_projector/core/lens_calibration.h"
 #include "rviz_projector/core/pinhole_model.h"
 #include "rviz_projector/core/projector_mount.h"
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/core/two_plane_lens_fit.h"
 
 namespace rviz_projector
 {
@@ -30,6 +40,7 @@ struct CameraCalibrationLimits
   double max_saturated = 0.2;   ///< of the lit pixels saturated in the white frame
   double min_decoded = 0.5;     ///< of the lit pixels decoded
   double min_coverage = 0.2;    ///< of the projector image's cells with a correspondence
+  int min_board_points = 100;   ///< correspondences on the board (projector cells of 8 x 8 pixels)
 };
 
 struct CameraCalibrationInput
@@ -42,6 +53,8 @@ struct CameraCalibrationInput
   /// with it.
   LensDistortion distortion;
   bool fit_distortion = true;
+  /// Set: a checkerboard tilted on the floor in the camera's view; fx, fy, cx, cy are fitted too.
+  std::optional<BoardSpec> board;
   CameraCalibrationLimits limits;
 };
 
@@ -51,10 +64,16 @@ struct CameraCalibrationResult
   GrayDecodeResult decoded; ///< statistics of the decoding
   std::size_t correspondences = 0;
   double coverage = 0.0;    ///< of the projector image's cells
-  DenseMountSolution solution;  ///< in the floor frame
+  DenseMountSolution solution;  ///< in the floor frame, the prior's fx, fy, cx, cy
+  /// With a board: where it was found, its correspondences, and the fit of the lens (which then
+  /// replaces `solution`'s mount and distortion).
+  BoardView board;
+  std::size_t board_correspondences = 0;
+  bool lens_fitted = false;
+  TwoPlaneLensFit lens_fit;
 };
 
-/// Steps 2 of the file comment; `captures` in grayCodeFrames() order.
+/// The steps of the file comment; `captures` in grayCodeFrames() order.
 CameraCalibrationResult solveFromCaptures(const CameraCalibrationInput& input, const std::vector<cv::Mat>& captures);
 
 }  // namespace rviz_projector
