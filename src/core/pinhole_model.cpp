@@ -155,8 +155,12 @@ LensCheck PinholeModel::fromCalibration(const LensCalibration& c, PinholeModel& 
     }
   }
 
+  // A D that LensDistortion models (plumb_bob, rational_polynomial) is drawn by the ProjectorCamera
+  // (issue 24); any other (equidistant, an unknown model) is not, and the view is the ideal pinhole.
   std::ostringstream warning;
-  const bool distorted = std::any_of(c.D.begin(), c.D.end(), [](double d) { return d != 0.0; });
+  LensDistortion modelled;
+  const bool distorted = std::any_of(c.D.begin(), c.D.end(), [](double d) { return d != 0.0; }) &&
+                         !(LensDistortion::fromCalibration(c, modelled).ok() && !modelled.none());
   if (distorted)
   {
     warning << "distortion D is not applied (the view uses the ideal pinhole of " << source << ")";

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <rviz/config.h>
+#include <rviz/properties/float_property.h>
 #include <rviz/properties/property.h>
 
 namespace rviz_projector
@@ -36,5 +37,18 @@ void ConfigCheck::choice(const rviz::Config& value, rviz::Property* property, co
   property->setValue(fallback);
   problems_ << QString("%1: '%2' -> %3").arg(property->getName(), value.isValid() ? value.getValue().toString() : current,
                                             fallback);
+}
+rviz::FloatProperty* boundedFloat(const QString& name, float value, float min, float max, const QString& help,
+                                  rviz::Property* parent, rviz::Display* display, const char* slot)
+{
+  auto* property = new rviz::FloatProperty(name, value, help, parent, slot, display);
+  property->setMin(min);
+  property->setMax(max);
+  return property;
+}
+
+double decimal(const rviz::FloatProperty* p)
+{
+  return std::round(static_cast<double>(p->getFloat()) * 1e6) / 1e6;
 }
 }  // namespace rviz_projector

@@ -23,20 +23,6 @@ enum Style
   kEdges = 0,
   kBand = 1,
 };
-
-rviz::FloatProperty* boundedFloat(const QString& name, float value, float min, float max, const QString& help,
-                                  rviz::Property* parent, rviz::Display* display)
-{
-  auto* property = new rviz::FloatProperty(name, value, help, parent, SLOT(updateCorridor()), display);
-  property->setMin(min);
-  property->setMax(max);
-  return property;
-}
-
-double decimal(const rviz::FloatProperty* p)
-{
-  return std::round(static_cast<double>(p->getFloat()) * 1e6) / 1e6;
-}
 }  // namespace
 
 CorridorProperties::CorridorProperties(rviz::Display* display)
@@ -58,7 +44,7 @@ CorridorProperties::CorridorProperties(rviz::Display* display)
   footprint->addOption("Polygon", static_cast<int>(Source::Polygon));
   footprint->addOption("Topic", static_cast<int>(Source::Topic));
   radius = boundedFloat("Radius", 0.3f, 0.01f, 10.0f, "Radius of a round robot, metres (Footprint: Radius).", enabled,
-                        display);
+                        display, SLOT(updateCorridor()));
   polygon = new rviz::StringProperty(
       "Polygon", "[[0.4, 0.3], [-0.2, 0.3], [-0.2, -0.3], [0.4, -0.3]]",
       "The robot's outline in the Robot frame (x forwards, y left), metres, as move_base's footprint parameter: "
@@ -69,7 +55,7 @@ CorridorProperties::CorridorProperties(rviz::Display* display)
       "geometry_msgs/PolygonStamped with the robot's outline (Footprint: Topic).", enabled, SLOT(updateCorridor()),
       display);
   length = boundedFloat("Length", static_cast<float>(defaults.length), 0.1f, 100.0f,
-                        "Metres of path ahead of the robot that the corridor covers.", enabled, display);
+                        "Metres of path ahead of the robot that the corridor covers.", enabled, display, SLOT(updateCorridor()));
   style = new rviz::EnumProperty("Style", "Edges",
                                  "Edges: the corridor's two outer edges as lines of Edge width. Band: the swept floor "
                                  "filled with Color at Alpha.",
@@ -77,13 +63,13 @@ CorridorProperties::CorridorProperties(rviz::Display* display)
   style->addOption("Edges", kEdges);
   style->addOption("Band", kBand);
   edge_width = boundedFloat("Edge width", static_cast<float>(defaults.edge_width), 0.005f, 1.0f,
-                            "Width of the edge lines, metres, centred on the corridor's edge.", enabled, display);
+                            "Width of the edge lines, metres, centred on the corridor's edge.", enabled, display, SLOT(updateCorridor()));
   color = new rviz::ColorProperty("Color", QColor(255, 200, 0), "Colour of the edges or the band.", enabled,
                                   SLOT(updateCorridor()), display);
   alpha = boundedFloat("Alpha", 0.3f, 0.0f, 1.0f,
                        "Opacity of the band (times the display's Alpha); the edges are drawn with the display's "
                        "Alpha.",
-                       enabled, display);
+                       enabled, display, SLOT(updateCorridor()));
 }
 
 QString CorridorProperties::checkLoaded(const rviz::Config& config) const

@@ -29,32 +29,15 @@ CorridorFootprint judged(std::vector<Vec2> polygon, const std::string& where)
 
 void CorridorSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
 {
-  if (topic == topic_ && subscribe_error_.empty())
+  if (subscription_.subscribe(nh, topic, 2, &CorridorSource::onFootprint, this, "Footprint"))
   {
-    return;
-  }
-  unsubscribe();
-  topic_ = topic;
-  if (topic_.empty())
-  {
-    return;
-  }
-  try
-  {
-    subscriber_ = nh.subscribe(topic_, 2, &CorridorSource::onFootprint, this);
-  }
-  catch (const ros::Exception& e)
-  {
-    topic_.clear();
-    subscribe_error_ = std::string("Cannot subscribe to the Footprint topic '") + topic + "': " + e.what();
+    clear();
   }
 }
 
 void CorridorSource::unsubscribe()
 {
-  subscriber_.shutdown();
-  topic_.clear();
-  subscribe_error_.clear();
+  subscription_.shutdown();
   clear();
 }
 
@@ -99,19 +82,20 @@ CorridorFootprint CorridorSource::fromText(const std::string& text)
 CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std::string& robot_frame)
 {
   CorridorFootprint result;
-  if (!subscribe_error_.empty())
+  if (!subscription_.error().empty())
   {
-    result.status = CueStatus{CueStatus::Level::Error, subscribe_error_};
+    result.status = CueStatus{CueStatus::Level::Error, subscription_.error()};
     return result;
   }
-  if (topic_.empty())
+  const std::string& topic = subscription_.topic();
+  if (topic.empty())
   {
     result.status = CueStatus{CueStatus::Level::Warn, "No Footprint topic set: no corridor"};
     return result;
   }
   if (!last_)
   {
-    result.status = CueStatus{CueStatus::Level::Warn, "No footprint received yet on " + topic_ + ": no corridor"};
+    result.status = CueStatus{CueStatus::Level::Warn, "No footprint received yet on " + topic + ": no corridor"};
     return result;
   }
   // move_base publishes the outline where the robot was at the stamp, in the costmap's frame: at
@@ -130,7 +114,7 @@ CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std
   }
   catch (const tf2::TransformException& e)
   {
-    result.status = CueStatus{CueStatus::Level::Error, "Footprint on " + topic_ + ": no transform from '" +
+    result.status = CueStatus{CueStatus::Level::Error, "Footprint on " + topic + ": no transform from '" +
                                                            last_->header.frame_id + "' to the Robot frame '" +
                                                            robot_frame + "': " + e.what() + ": no corridor"};
     return result;
@@ -145,6 +129,6 @@ CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std
     tf2::doTransform(in, out, to_robot);
     polygon.push_back({out.x, out.y});
   }
-  return judged(std::move(polygon), "Footprint on " + topic_);
+  return judged(std::move(polygon), "Footprint on " + topic);
 }
 }  // namespace rviz_projector

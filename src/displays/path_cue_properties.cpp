@@ -19,15 +19,6 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-rviz::FloatProperty* boundedFloat(const QString& name, float value, float min, float max, const QString& help,
-                                  rviz::Property* parent, rviz::Display* display)
-{
-  auto* property = new rviz::FloatProperty(name, value, help, parent, SLOT(updateCues()), display);
-  property->setMin(min);
-  property->setMax(max);
-  return property;
-}
-
 /// `config`'s entry for `child` of the group `group` (rviz saves a property with children as a
 /// map: its own value under "Value", each child under its name).
 rviz::Config childConfig(const rviz::Config& config, const rviz::Property* group, const rviz::Property* child)
@@ -52,11 +43,11 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
       "imminent, not the whole route.",
       display, SLOT(updateCues()), display);
   horizon_length = boundedFloat("Length", static_cast<float>(defaults.horizon_length), 0.0f, 1000.0f,
-                                "Metres of path ahead of the robot that are drawn.", horizon, display);
+                                "Metres of path ahead of the robot that are drawn.", horizon, display, SLOT(updateCues()));
   fade_length = boundedFloat("Fade", static_cast<float>(defaults.fade_length), 0.0f, 1000.0f,
                              "The last metres of the horizon fade out (opacity falls linearly to 0). With a cue "
                              "on, arrows are drawn Flat (Style 3D is not used).",
-                             horizon, display);
+                             horizon, display, SLOT(updateCues()));
 
   marching = new rviz::BoolProperty(
       "Marching", false,
@@ -64,7 +55,7 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
       "places depend only on the path and ROS time: a replan of the same route changes nothing.",
       display, SLOT(updateCues()), display);
   marching_speed = boundedFloat("Speed", static_cast<float>(defaults.marching_speed), 0.0f, 10.0f,
-                                "Marching speed, m/s.", marching, display);
+                                "Marching speed, m/s.", marching, display, SLOT(updateCues()));
 
   state_topic = new rviz::RosTopicProperty(
       "State topic", "",
@@ -86,9 +77,9 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
       "Warning time before they become steady. The visual half of a start warning: it does not hold the robot.",
       state_topic, SLOT(updateCues()), display);
   warning_time = boundedFloat("Warning time", static_cast<float>(goal_defaults.warning_time), 0.0f, 60.0f,
-                              "Seconds of blinking.", warning, display);
+                              "Seconds of blinking.", warning, display, SLOT(updateCues()));
   warning_hz = boundedFloat("Blink frequency", static_cast<float>(goal_defaults.warning_hz), 0.1f, 10.0f,
-                            "Blinks per second during the warning.", warning, display);
+                            "Blinks per second during the warning.", warning, display, SLOT(updateCues()));
 
   turn_signal = new rviz::BoolProperty(
       "Turn signal", false,
@@ -96,16 +87,16 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
       "coming sharp turn, blinking at 1.5 Hz like a car's indicator.",
       display, SLOT(updateCues()), display);
   turn_angle = boundedFloat("Turn angle", static_cast<float>(defaults.turn.angle * 180.0 / kPi), 1.0f, 360.0f,
-                            "Degrees: a turn of the path sharper than this is signalled.", turn_signal, display);
+                            "Degrees: a turn of the path sharper than this is signalled.", turn_signal, display, SLOT(updateCues()));
   turn_distance = boundedFloat("Turn distance", static_cast<float>(defaults.turn.distance), 0.0f, 100.0f,
-                               "Metres of path ahead of the robot in which a turn is signalled.", turn_signal, display);
+                               "Metres of path ahead of the robot in which a turn is signalled.", turn_signal, display, SLOT(updateCues()));
   glyph_size = boundedFloat("Glyph size", static_cast<float>(defaults.glyph_size), 0.01f, 10.0f,
-                            "Metres across the turn-signal glyph.", turn_signal, display);
+                            "Metres across the turn-signal glyph.", turn_signal, display, SLOT(updateCues()));
   glyph_ahead = boundedFloat("Glyph ahead", static_cast<float>(defaults.glyph_ahead), -10.0f, 10.0f,
                              "Metres in front of the robot's centre (along the path's direction at the robot) "
                              "where the glyph is drawn, beside the path: where a projector on the robot lights the "
                              "floor.",
-                             turn_signal, display);
+                             turn_signal, display, SLOT(updateCues()));
 }
 
 QString PathCueProperties::checkLoaded(const rviz::Config& config) const
@@ -127,15 +118,6 @@ QString PathCueProperties::checkLoaded(const rviz::Config& config) const
   }
   return check.report();
 }
-
-namespace
-{
-/// A float property's value rounded to 6 decimals, as a double.
-double decimal(const rviz::FloatProperty* p)
-{
-  return std::round(static_cast<double>(p->getFloat()) * 1e6) / 1e6;
-}
-}  // namespace
 
 PathCueSettings PathCueProperties::settings() const
 {

@@ -323,7 +323,11 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
   {
     std::string error;
     context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error);
-    setStatus(rviz::StatusProperty::Error, "Transform", QString::fromStdString(error));
+    // Right after a backward jump of ROS time (a bag looping) rviz empties tf between the filter
+    // letting the path through and this lookup: expected, a warning; the next path is drawn.
+    const bool expected = RosClock::shared().policy().justStartedOrJumpedBack();
+    setStatus(expected ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error, "Transform",
+              expected ? QString(kWaitingForTfAfterJump) + QString::fromStdString(error) : QString::fromStdString(error));
     return;
   }
   setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");

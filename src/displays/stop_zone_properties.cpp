@@ -22,21 +22,6 @@ enum Style
   kFilled = 0,
   kHatched = 1,
 };
-
-rviz::FloatProperty* boundedFloat(const QString& name, float value, float min, float max, const QString& help,
-                                  rviz::Property* parent, rviz::Display* display)
-{
-  auto* property = new rviz::FloatProperty(name, value, help, parent, SLOT(updateStopZone()), display);
-  property->setMin(min);
-  property->setMax(max);
-  return property;
-}
-
-/// A float property's value rounded to 6 decimals (as typed), as a double.
-double decimal(const rviz::FloatProperty* p)
-{
-  return std::round(static_cast<double>(p->getFloat()) * 1e6) / 1e6;
-}
 }  // namespace
 
 StopZoneProperties::StopZoneProperties(rviz::Display* display)
@@ -54,9 +39,9 @@ StopZoneProperties::StopZoneProperties(rviz::Display* display)
       "(hypot(x, y), in child_frame_id). Reversing counts like driving forwards.",
       enabled, SLOT(updateStopZone()), display);
   deceleration = boundedFloat("Deceleration", static_cast<float>(defaults.deceleration), 0.01f, 100.0f,
-                              "The robot's braking deceleration, m/s^2.", enabled, display);
+                              "The robot's braking deceleration, m/s^2.", enabled, display, SLOT(updateStopZone()));
   reaction_time = boundedFloat("Reaction time", static_cast<float>(defaults.reaction_time), 0.0f, 10.0f,
-                               "Seconds before braking starts, driven at the current speed.", enabled, display);
+                               "Seconds before braking starts, driven at the current speed.", enabled, display, SLOT(updateStopZone()));
   style = new rviz::EnumProperty("Style", "Filled",
                                  "Filled: the floor between the robot and the bar is one area. Hatched: stripes "
                                  "across the path, 5 cm long every 15 cm from the robot on.",
@@ -68,9 +53,9 @@ StopZoneProperties::StopZoneProperties(rviz::Display* display)
   alpha = boundedFloat("Alpha", static_cast<float>(defaults.fill_alpha), 0.0f, 1.0f,
                        "Opacity of the filled area or the stripes (times the display's Alpha); the bar is drawn "
                        "with the display's Alpha.",
-                       enabled, display);
+                       enabled, display, SLOT(updateStopZone()));
   width = boundedFloat("Width", static_cast<float>(defaults.width), 0.01f, 10.0f,
-                       "Metres across the path, centred on it.", enabled, display);
+                       "Metres across the path, centred on it.", enabled, display, SLOT(updateStopZone()));
 }
 
 QString StopZoneProperties::checkLoaded(const rviz::Config& config) const

@@ -8,32 +8,15 @@ namespace rviz_projector
 {
 void StopZoneSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
 {
-  if (topic == topic_ && subscribe_error_.empty())
+  if (subscription_.subscribe(nh, topic, 10, &StopZoneSource::onOdometry, this, "Odometry"))
   {
-    return;
-  }
-  unsubscribe();
-  topic_ = topic;
-  if (topic_.empty())
-  {
-    return;
-  }
-  try
-  {
-    subscriber_ = nh.subscribe(topic_, 10, &StopZoneSource::onOdometry, this);
-  }
-  catch (const ros::Exception& e)
-  {
-    topic_.clear();
-    subscribe_error_ = std::string("Cannot subscribe to the Odometry topic '") + topic + "': " + e.what();
+    clear();
   }
 }
 
 void StopZoneSource::unsubscribe()
 {
-  subscriber_.shutdown();
-  topic_.clear();
-  subscribe_error_.clear();
+  subscription_.shutdown();
   clear();
 }
 
@@ -73,28 +56,28 @@ SpeedEstimate StopZoneSource::speedAt(double now)
 
 CueStatus StopZoneSource::status(double now) const
 {
-  if (!subscribe_error_.empty())
+  if (!subscription_.error().empty())
   {
-    return CueStatus{CueStatus::Level::Error, subscribe_error_};
+    return CueStatus{CueStatus::Level::Error, subscription_.error()};
   }
-  if (topic_.empty())
+  if (subscription_.topic().empty())
   {
     return CueStatus{CueStatus::Level::Warn, "No Odometry topic set: no stop zone"};
   }
   if (!received_)
   {
-    return CueStatus{CueStatus::Level::Warn, "No odometry received yet on " + topic_ + ": no stop zone"};
+    return CueStatus{CueStatus::Level::Warn, "No odometry received yet on " + subscription_.topic() + ": no stop zone"};
   }
   if (bad_twist_)
   {
     return CueStatus{CueStatus::Level::Error,
-                     "The odometry's twist on " + topic_ + " has NaN/Inf values: no stop zone"};
+                     "The odometry's twist on " + subscription_.topic() + " has NaN/Inf values: no stop zone"};
   }
   if (now - last_arrival_ > kStaleAfter)
   {
     // A fixed text: a status that changes every frame repaints rviz's whole property tree.
-    return CueStatus{CueStatus::Level::Warn, "No odometry on " + topic_ + " for more than 1 s: no stop zone"};
+    return CueStatus{CueStatus::Level::Warn, "No odometry on " + subscription_.topic() + " for more than 1 s: no stop zone"};
   }
-  return CueStatus{CueStatus::Level::Ok, "Odometry received on " + topic_};
+  return CueStatus{CueStatus::Level::Ok, "Odometry received on " + subscription_.topic()};
 }
 }  // namespace rviz_projector

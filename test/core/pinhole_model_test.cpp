@@ -182,7 +182,7 @@ TEST(PinholeModel, BadCalibrationsAreRefusedWithAReason)
   }
 }
 
-TEST(PinholeModel, DistortionIsReportedNotApplied)
+TEST(PinholeModel, DistortionIsReportedNotAppliedOnlyForModelsThatAreNotDrawn)
 {
   LensCalibration c = calibration(1280, 800, 1000, 1000, 640, 400);
   c.distortion_model = "plumb_bob";
@@ -191,7 +191,12 @@ TEST(PinholeModel, DistortionIsReportedNotApplied)
   LensCheck check = PinholeModel::fromCalibration(c, m);
   EXPECT_TRUE(check.ok());
   EXPECT_TRUE(check.warning.empty());
-  c.D = {0.1, -0.02, 0, 0, 0};
+  c.D = {0.1, -0.02, 0, 0, 0};  // plumb_bob: the ProjectorCamera draws it (issue 24)
+  check = PinholeModel::fromCalibration(c, m);
+  EXPECT_TRUE(check.ok());
+  EXPECT_TRUE(check.warning.empty()) << check.warning;
+  c.distortion_model = "equidistant";  // not modelled: the view is the ideal pinhole
+  c.D = {0.1, -0.02, 0, 0};
   check = PinholeModel::fromCalibration(c, m);
   EXPECT_TRUE(check.ok());
   EXPECT_NE(check.warning.find("distortion D is not applied"), std::string::npos);

@@ -541,18 +541,30 @@ def find_properties(root, sources, resolver):
                         return displays[d]
         return None
 
-    found = []
-    for path in sorted(files):
-        code = sources.files[path]
-        # Helpers: functions returning rviz::XxxProperty* that take the property's name as a QString.
-        helpers = {}
+    def helpers_of(code):
+        """Functions returning rviz::XxxProperty* that take the property's name as a QString: {name:
+        (name argument, default argument, parent argument, body start, body end)}."""
+        out = {}
         for m in re.finditer(r"rviz::(\w+Property)\s*\*\s*(\w+)\s*\(([^)]*)\)\s*\{", code):
             params = [p.strip() for p in m.group(3).split(",")]
             index = next((i for i, p in enumerate(params) if re.search(r"QString\s*&?\s*\w+$", p)), None)
             parent = next((i for i, p in enumerate(params) if re.search(r"rviz::Property\s*\*\s*\w+$", p)), None)
             if index is not None:
                 body_end = matching(code, m.end() - 1, "{", "}")
-                helpers[m.group(2)] = (index, index + 1, parent, m.start(), body_end)
+                out[m.group(2)] = (index, index + 1, parent, m.start(), body_end)
+        return out
+
+    # Helpers shared by the displays' files (config_check.cpp: boundedFloat), usable in any of them.
+    shared = {}
+    for path in files:
+        for name, h in helpers_of(sources.files[path]).items():
+            shared[name] = (h[0], h[1], h[2], -1, -1)
+
+    found = []
+    for path in sorted(files):
+        code = sources.files[path]
+        helpers = dict(shared)
+        helpers.update(helpers_of(code))
         if not helpers and "Property" not in code:
             continue
         variables = {}  # variable -> property name (for parents)

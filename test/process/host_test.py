@@ -2,7 +2,7 @@
 """projector_host as the robot runs it (issue 13): a real process under the suite's X server.
 
 - it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px), the
-  ProjectedPath's Stop zone (issue 25) included;
+  ProjectedPath's Stop zone and Corridor (issue 25) included;
 - a reload with a changed property changes the pixels; a broken reload (bad YAML, a plugin that
   is not installed, a property value of the wrong type, no ProjectorCamera) is refused with a
   message, keeps the old picture and the process;
@@ -41,6 +41,7 @@ EXIT_LIMIT = 2.0
 MAGENTA = (255, 0, 255)
 CYAN = (0, 255, 255)
 ORANGE = (255, 140, 0)  # the Stop zone's bar in its default Color
+AMBER = (255, 200, 0)  # the Corridor's edges in their default Color
 
 
 def xrandr(*args):
@@ -154,10 +155,12 @@ class HostTest(unittest.TestCase):
 
     # ---- tests -----------------------------------------------------------------------------
     def test_same_pixels_as_rviz(self):
-        # With the Stop zone on (its bar and fill are lit pixels too), the robot at 0.8 m/s.
+        # With the Stop zone on (its bar and fill are lit pixels too), the robot at 0.8 m/s, and the
+        # Corridor's edges (a round robot, the default).
         config = self.config_copy(replace={"      Arrow color: 255; 0; 255\n": "      Arrow color: 255; 0; 255\n"
                                            "      Stop zone:\n        Value: true\n"
-                                           "        Odometry topic: /host_test/odom\n"})
+                                           "        Odometry topic: /host_test/odom\n"
+                                           "      Corridor:\n        Value: true\n"})
         self.odometry_speed = 0.8
         rviz = RvizProcess(config, label="host_same_pixels_rviz")
         self.procs.append(rviz)
@@ -174,6 +177,8 @@ class HostTest(unittest.TestCase):
         self.assertEqual((rviz_window["x"], rviz_window["y"], rviz_window["width"], rviz_window["height"]),
                          (host_window["x"], host_window["y"], host_window["width"], host_window["height"]),
                          "the host's output window is not where rviz's was")
+        for who, pixels in (("rviz", rviz_pixels), ("projector_host", host_pixels)):
+            self.assertGreater(pixels.count_colour(AMBER), 200, who + " shows no corridor")
         a = set(rviz_pixels.lit())
         b = set(host_pixels.lit())
         self.assertGreater(len(a), 1000, "too little lit in rviz's projector window to compare")

@@ -22,6 +22,7 @@
 #include <rviz/visualization_manager.h>
 #include <rviz/yaml_config_reader.h>
 #include <rviz/yaml_config_writer.h>
+#include <tf2_ros/buffer.h>
 
 #include "projector_test_fixture.h"
 #include "rviz_projector/displays/projected_path_display.h"
@@ -233,6 +234,19 @@ TEST_F(StopZoneTest, StartsWhereTheRobotIsOnThePath)
 {
   ASSERT_TRUE(pathWithStopZone(2.5));
   publishStaticTransform("map", "base_link", 0.6, 0.05, 0.0, 0.0);  // beside the path at x 0.6
+  // The odometry below redraws the zone: only once tf has the robot's new place (no frame of a
+  // projector that is not on the robot redraws it on a tf change alone).
+  ASSERT_TRUE(waitFor([&] {
+    try
+    {
+      return std::abs(rviz_->manager()->getTF2BufferPtr()->lookupTransform("map", "base_link", ros::Time())
+                          .transform.translation.x - 0.6) < 1e-9;
+    }
+    catch (const std::exception&)
+    {
+      return false;
+    }
+  }));
   publishOdometry(0.8);
   const double stop_x = 0.6 + stopDistance(0.8);  // 1.48
   const QImage frame = barAt(stop_x);

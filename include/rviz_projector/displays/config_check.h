@@ -8,6 +8,8 @@
 namespace rviz
 {
 class Config;
+class Display;
+class FloatProperty;
 class Property;
 }  // namespace rviz
 
@@ -27,4 +29,11 @@ public:
 private:
   QStringList problems_;
 };
+
+/// A float property limited to [min, max] whose changes call `slot` (SLOT(...)) of `display`: the
+/// cue groups' numbers.
+rviz::FloatProperty* boundedFloat(const QString& name, float value, float min, float max, const QString& help,
+                                  rviz::Property* parent, rviz::Display* display, const char* slot);
+/// A float property's value rounded to 6 decimals (as typed), as a double.
+double decimal(const rviz::FloatProperty* p);
 }  // namespace rviz_projector

@@ -14,6 +14,7 @@
 
 #include "rviz_projector/core/vec2.h"
 #include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/topic_subscription.h"
 #endif
 
 namespace tf2_ros
@@ -61,9 +62,7 @@ public:
 private:
   void onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg);
 
-  ros::Subscriber subscriber_;
-  std::string topic_;
-  std::string subscribe_error_;
+  TopicSubscription subscription_;
   geometry_msgs::PolygonStamped::ConstPtr last_;
   bool news_ = false;
   std::size_t messages_ = 0;

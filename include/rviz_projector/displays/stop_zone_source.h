@@ -12,6 +12,7 @@
 
 #include "rviz_projector/core/stop_zone.h"
 #include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/topic_subscription.h"
 #endif
 
 namespace rviz_projector
@@ -47,9 +48,7 @@ public:
 private:
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
 
-  ros::Subscriber subscriber_;
-  std::string topic_;
-  std::string subscribe_error_;
+  TopicSubscription subscription_;
   SpeedFilter filter_;
   bool received_ = false;
   bool bad_twist_ = false;    // the last message's twist had NaN/Inf
