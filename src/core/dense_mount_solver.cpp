@@ -32,17 +32,6 @@ DenseMountSolution failure(const std::string& error)
   return s;
 }
 
-double median(std::vector<double> values)
-{
-  if (values.empty())
-  {
-    return HUGE_VAL;
-  }
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 /// Fraction of the 10 x 10 cells of the image holding at least one of the points.
 double coverage(const PinholeModel& lens, const std::vector<FloorPoint>& points, const std::vector<int>& which)
 {

@@ -46,6 +46,17 @@ std::vector<int> allIndices(std::size_t n)
 }
 }  // namespace
 
+double median(std::vector<double> values)
+{
+  if (values.empty())
+  {
+    return HUGE_VAL;
+  }
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 std::string num(double v)
 {
   std::ostringstream s;

@@ -23,6 +23,9 @@ struct Pose
 RigidTransform parentTOptical(const Pose& pose);
 /// The inverse: OpenCV's pose of an optical frame at `parent_T_optical`.
 Pose poseOf(const RigidTransform& parent_T_optical);
+/// The median (the upper one of an even count); HUGE_VAL for no values. The dense solver's and the
+/// two-plane lens fit's residual statistics.
+double median(std::vector<double> values);
 /// A number as the solver's messages print it (shortest round-trip-ish form of an ostream).
 std::string num(double v);
 cv::Matx33d cameraMatrix(const PinholeModel& lens);

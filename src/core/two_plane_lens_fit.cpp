@@ -31,17 +31,6 @@ TwoPlaneLensFit failure(const std::string& error)
   return f;
 }
 
-double median(std::vector<double> values)
-{
-  if (values.empty())
-  {
-    return HUGE_VAL;
-  }
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 struct Model
 {
   cv::Matx33d k;  ///< unshifted
