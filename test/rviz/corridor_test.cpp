@@ -12,7 +12,6 @@
 #include <map>
 #include <vector>
 
-#include <QTemporaryDir>
 #include <geometry_msgs/PolygonStamped.h>
 #include <rviz/config.h>
 #include <rviz/display.h>
@@ -20,7 +19,6 @@
 #include <rviz/properties/property.h>
 #include <rviz/visualization_manager.h>
 #include <rviz/yaml_config_reader.h>
-#include <rviz/yaml_config_writer.h>
 
 #include "projector_test_fixture.h"
 #include "rviz_projector/displays/projected_path_display.h"
@@ -255,43 +253,11 @@ class CorridorConfigTest : public RvizTest
 
 TEST_F(CorridorConfigTest, PropertiesAreSavedAndLoaded)
 {
-  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
-  ASSERT_NE(d, nullptr);
-  rviz::Property* group = d->subProp("Corridor");
   const std::map<std::string, QVariant> values = {
       {"Footprint", "Topic"},   {"Radius", 0.45},     {"Polygon", "[[1, 1], [-1, 1], [0, -1]]"},
       {"Footprint topic", "/move_base/global_costmap/footprint"},   {"Length", 2.5},
       {"Style", "Band"},        {"Edge width", 0.05}, {"Color", QColor(10, 20, 30)}, {"Alpha", 0.6}};
-  for (const auto& v : values)
-  {
-    group->subProp(QString::fromStdString(v.first))->setValue(v.second);
-  }
-  group->setValue(true);
-  std::map<std::string, std::string> shown;
-  for (const auto& v : values)
-  {
-    shown[v.first] = group->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString();
-  }
-  QTemporaryDir dir;
-  const QString file = dir.path() + "/saved.rviz";
-  rviz::Config saved;
-  rviz_->manager()->save(saved);
-  rviz::YamlConfigWriter().writeFile(saved, file);
-  rviz_.reset();
-
-  RvizInstance fresh(320, 240);
-  rviz::Config loaded;
-  rviz::YamlConfigReader reader;
-  reader.readFile(loaded, file);
-  ASSERT_FALSE(reader.error());
-  fresh.manager()->load(loaded);
-  ASSERT_EQ(fresh.manager()->getRootDisplayGroup()->numDisplays(), 1);
-  rviz::Property* again = fresh.manager()->getRootDisplayGroup()->getDisplayAt(0)->subProp("Corridor");
-  EXPECT_TRUE(again->getValue().toBool()) << "the group's switch";
-  for (const auto& v : shown)
-  {
-    EXPECT_EQ(again->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString(), v.second) << v.first;
-  }
+  std::map<std::string, std::string> shown = expectGroupSavedAndLoaded("Corridor", values);
   EXPECT_EQ(shown["Style"], "Band");
   EXPECT_EQ(shown["Footprint"], "Topic");
 }

@@ -7,14 +7,19 @@
 #include <OgreMaterialManager.h>
 #include <OgreRenderWindow.h>
 #include <QApplication>
+#include <QTemporaryDir>
 #include <QThread>
 #include <geometry_msgs/TransformStamped.h>
+#include <rviz/config.h>
 #include <rviz/display.h>
+#include <rviz/display_group.h>
 #include <rviz/properties/status_list.h>
 #include <rviz/render_panel.h>
 #include <rviz/view_controller.h>
 #include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
+#include <rviz/yaml_config_reader.h>
+#include <rviz/yaml_config_writer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "rviz_projector/displays/render_target_readback.h"
@@ -222,5 +227,51 @@ ros::Time monotonicTestStart(double multiple)
   const double now = multiple * std::floor(ros::WallTime::now().toSec() / multiple);
   last = std::max(now, multiple * std::ceil((last + 2.0) / multiple));
   return ros::Time(last);
+}
+std::map<std::string, std::string> RvizTest::expectGroupSavedAndLoaded(const QString& group_name,
+                                                                     const std::map<std::string, QVariant>& values)
+{
+  std::map<std::string, std::string> shown;
+  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
+  EXPECT_NE(d, nullptr);
+  if (d == nullptr)
+  {
+    return shown;
+  }
+  rviz::Property* group = d->subProp(group_name);
+  for (const auto& v : values)
+  {
+    group->subProp(QString::fromStdString(v.first))->setValue(v.second);
+  }
+  group->setValue(true);
+  for (const auto& v : values)
+  {
+    shown[v.first] = group->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString();
+  }
+  QTemporaryDir dir;
+  const QString file = dir.path() + "/saved.rviz";
+  rviz::Config saved;
+  rviz_->manager()->save(saved);
+  rviz::YamlConfigWriter().writeFile(saved, file);
+  rviz_.reset();  // close this rviz before starting the next
+
+  RvizInstance fresh(320, 240);
+  rviz::Config loaded;
+  rviz::YamlConfigReader reader;
+  reader.readFile(loaded, file);
+  EXPECT_FALSE(reader.error()) << reader.errorMessage().toStdString();
+  fresh.manager()->load(loaded);
+  EXPECT_EQ(fresh.manager()->getRootDisplayGroup()->numDisplays(), 1);
+  if (fresh.manager()->getRootDisplayGroup()->numDisplays() != 1)
+  {
+    return shown;
+  }
+  rviz::Property* again = fresh.manager()->getRootDisplayGroup()->getDisplayAt(0)->subProp(group_name);
+  EXPECT_TRUE(again->getValue().toBool()) << "the group's switch";
+  for (const auto& v : shown)
+  {
+    EXPECT_EQ(again->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString(), v.second) << v.first;
+  }
+  return shown;
 }
 }  // namespace rviz_projector_test

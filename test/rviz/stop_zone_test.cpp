@@ -13,7 +13,6 @@
 #include <map>
 #include <vector>
 
-#include <QTemporaryDir>
 #include <nav_msgs/Odometry.h>
 #include <rviz/config.h>
 #include <rviz/display.h>
@@ -21,7 +20,6 @@
 #include <rviz/properties/property.h>
 #include <rviz/visualization_manager.h>
 #include <rviz/yaml_config_reader.h>
-#include <rviz/yaml_config_writer.h>
 #include <tf2_ros/buffer.h>
 
 #include "projector_test_fixture.h"
@@ -327,42 +325,10 @@ protected:
 
 TEST_F(StopZoneConfigTest, PropertiesAreSavedAndLoaded)
 {
-  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
-  ASSERT_NE(d, nullptr);
-  rviz::Property* zone = d->subProp("Stop zone");
   const std::map<std::string, QVariant> values = {
       {"Odometry topic", "/robot/odom"}, {"Deceleration", 1.25}, {"Reaction time", 0.45}, {"Style", "Hatched"},
       {"Color", QColor(10, 20, 30)},     {"Alpha", 0.7},         {"Width", 0.55}};
-  for (const auto& v : values)
-  {
-    zone->subProp(QString::fromStdString(v.first))->setValue(v.second);
-  }
-  zone->setValue(true);
-  std::map<std::string, std::string> shown;
-  for (const auto& v : values)
-  {
-    shown[v.first] = zone->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString();
-  }
-  QTemporaryDir dir;
-  const QString file = dir.path() + "/saved.rviz";
-  rviz::Config saved;
-  rviz_->manager()->save(saved);
-  rviz::YamlConfigWriter().writeFile(saved, file);
-  rviz_.reset();
-
-  RvizInstance fresh(320, 240);
-  rviz::Config loaded;
-  rviz::YamlConfigReader reader;
-  reader.readFile(loaded, file);
-  ASSERT_FALSE(reader.error());
-  fresh.manager()->load(loaded);
-  ASSERT_EQ(fresh.manager()->getRootDisplayGroup()->numDisplays(), 1);
-  rviz::Property* again = fresh.manager()->getRootDisplayGroup()->getDisplayAt(0)->subProp("Stop zone");
-  EXPECT_TRUE(again->getValue().toBool()) << "the group's switch";
-  for (const auto& v : shown)
-  {
-    EXPECT_EQ(again->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString(), v.second) << v.first;
-  }
+  std::map<std::string, std::string> shown = expectGroupSavedAndLoaded("Stop zone", values);
   EXPECT_EQ(shown["Style"], "Hatched");
   EXPECT_EQ(shown["Odometry topic"], "/robot/odom");
 }
