@@ -101,6 +101,15 @@ void ProjectedPathDisplay::updateCorridor()
     return;
   }
   corridor_source_.subscribe(update_nh_, corridor_properties_->wantedTopic());
+  // A Radius or a typed Polygon only changes with the properties: read here, not every frame.
+  if (corridor_properties_->source() == CorridorProperties::Source::Radius)
+  {
+    corridor_typed_ = CorridorSource::fromRadius(corridor_properties_->radius->getFloat());
+  }
+  else if (corridor_properties_->source() == CorridorProperties::Source::Polygon)
+  {
+    corridor_typed_ = CorridorSource::fromText(corridor_properties_->polygon->getStdString());
+  }
   corridor_status_shown_ = CueStatus();
   deleteStatus("Corridor");
   updateCues();
@@ -108,23 +117,24 @@ void ProjectedPathDisplay::updateCorridor()
 
 void ProjectedPathDisplay::takeCorridorFootprint()
 {
-  CorridorFootprint footprint;
-  switch (corridor_properties_->source())
+  CorridorFootprint from_topic;
+  if (corridor_properties_->source() == CorridorProperties::Source::Topic)
   {
-    case CorridorProperties::Source::Radius:
-      footprint = CorridorSource::fromRadius(corridor_properties_->radius->getFloat());
-      break;
-    case CorridorProperties::Source::Polygon:
-      footprint = CorridorSource::fromText(corridor_properties_->polygon->getStdString());
-      break;
-    case CorridorProperties::Source::Topic:
-      footprint = corridor_source_.fromTopic(*context_->getTF2BufferPtr(), cue_properties_->robot_frame->getFrameStd());
-      break;
+    from_topic = corridor_source_.fromTopic(*context_->getTF2BufferPtr(), cue_properties_->robot_frame->getFrameStd());
   }
+  const CorridorFootprint& footprint =
+      corridor_properties_->source() == CorridorProperties::Source::Topic ? from_topic : corridor_typed_;
   showCueStatus("Corridor", footprint.status, corridor_status_shown_);
   // Nothing usable: radius 0 and no polygon, which CueDrawing sweeps as nothing.
   cue_settings_.corridor_radius = footprint.usable() ? footprint.radius : 0.0;
-  cue_settings_.corridor_footprint = footprint.usable() ? std::move(footprint.polygon) : std::vector<Vec2>();
+  if (footprint.usable())
+  {
+    cue_settings_.corridor_footprint = footprint.polygon;
+  }
+  else
+  {
+    cue_settings_.corridor_footprint.clear();
+  }
 }
 
 void ProjectedPathDisplay::update(float /*wall_dt*/, float /*ros_dt*/)

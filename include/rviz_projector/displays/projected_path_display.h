@@ -189,6 +189,7 @@ private:
 
   std::unique_ptr<CorridorProperties> corridor_properties_;
   CorridorSource corridor_source_;
+  CorridorFootprint corridor_typed_;  ///< from the Radius or Polygon property (updateCorridor)
   CueStatus corridor_status_shown_;
   std::unique_ptr<FloorMesh> corridor_mesh_;
   /// The footprint for this frame into cue_settings_, its status shown.
