@@ -269,6 +269,7 @@ SpacingParameters ProjectedPathDisplay::spacingParameters() const
   p.arrow.head_length = head_length_property_->getFloat();
   p.arrow.head_diameter = head_diameter_property_->getFloat();
   p.circle_diameter = circle_diameter_property_->getFloat();
+  p.speed_coding = stop_properties_->speedCoding(coded_speed_);
   return p;
 }
 
@@ -395,8 +396,8 @@ void ProjectedPathDisplay::checkPathTimeout()
 
 void ProjectedPathDisplay::updateSpacing()
 {
-  checkMarchingMode();
   spacer_.setParameters(spacingParameters());
+  checkMarchingMode();
   rebuild();
 }
 
