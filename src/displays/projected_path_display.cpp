@@ -150,6 +150,12 @@ void ProjectedPathDisplay::onInitialize()
   glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   stop_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   corridor_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  // Bottom to top where they overlap: corridor, stop zone, destination, arrows, glyph.
+  corridor_mesh_->setLayer(1);
+  stop_mesh_->setLayer(2);
+  circle_mesh_->setLayer(3);
+  arrow_mesh_->setLayer(4);
+  glyph_mesh_->setLayer(5);
   cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
   updateStateTopic();

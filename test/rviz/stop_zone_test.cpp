@@ -259,6 +259,29 @@ TEST_F(StopZoneTest, StartsWhereTheRobotIsOnThePath)
   EXPECT_TRUE(sameColour(colourAt(frame, {0.65, kSide}), kOrangeFill, 20)) << "ahead of the robot: the fill";
 }
 
+TEST_F(StopZoneTest, ArrowsAreDrawnOverTheZoneAlsoWhenTheyFade)
+{
+  // A fading horizon makes the arrows translucent: OGRE would sort them and the zone by their
+  // distance from the projector (the arrows' middle lies further away), drawing the bar over them.
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  path_->subProp("Horizon")->subProp("Length")->setValue(2.0);
+  path_->subProp("Horizon")->subProp("Fade")->setValue(1.0);
+  path_->subProp("Horizon")->setValue(true);
+  // The bar's far edge at x 1.30 (d = 1.0 m: v^2 + 0.3 v = 1), the bar on [1.25, 1.30]: across the
+  // head of the arrow whose tip is at 1.35 (tips every 0.25 m from 2.35 back; heads 0.08 long).
+  const double v = (-0.3 + std::sqrt(0.09 + 4.0)) / 2.0;
+  publishOdometry(v);
+  const double stop_x = kRobotX + stopDistance(v);
+  ASSERT_NEAR(stop_x, 1.30, 1e-9);
+  const QImage frame = barAt(stop_x);
+  saveShot(frame, "cues-stop-zone-under-arrows");
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.29, 0.0}), kArrowMagenta, 40))
+      << "arrow head over the bar: " << describe(colourAt(frame, {1.29, 0.0}));
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.275, 0.04}), kArrowMagenta, 40))
+      << "arrow head over the bar, off centre: " << describe(colourAt(frame, {1.275, 0.04}));
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.275, 0.1}), kOrange, 30)) << "the bar beside the head";
+}
+
 namespace
 {
 /// Speed-coded spacing by hand: tips measured back from the destination, the first 0.15 m from it
