@@ -18,6 +18,7 @@ if(benchmark_FOUND)
     bench/micro/bench_paths.cpp
     bench/micro/calibration_benchmarks.cpp
     bench/micro/corridor_benchmarks.cpp
+    bench/micro/cue_benchmarks.cpp
     bench/micro/mask_benchmarks.cpp
     bench/micro/mesh_benchmarks.cpp
     bench/micro/micro_benchmarks.cpp
