@@ -255,6 +255,10 @@ TEST_F(OffViewTest, PathLeavingTheLitAreaGetsAnEdgeArrowAndNoneOnceVisible)
   EXPECT_TRUE(statusSays("edge arrow")) << status();
   EXPECT_EQ(statusOf(path_, "Off-view cue").level, rviz::StatusProperty::Ok);
   EXPECT_GT(path_->offViewTriangleCount(), 0u);
+  // Nothing changes: no upload, however many frames rviz draws.
+  const std::size_t builds = path_->meshBuilds();
+  EXPECT_TRUE(waitForMainViewFrames(20));
+  EXPECT_EQ(path_->meshBuilds(), builds) << "the same cue uploaded again";
 
   // The robot turns to the path straight ahead: the path is in view, the cue goes.
   publishStaticTransform("map", "base_link", kRobotX, 0.0, 0.0, 0.0);
