@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
@@ -112,10 +113,10 @@ std::vector<Vec2> inset(const std::vector<Vec2>& p, double m)
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::size_t j = (i + n - 1) % n;  // edge j ends where edge i starts
-    // from[j] + t dir[j] = from[i] + s dir[i]
+    // from[j] + t dir[j] = from[i] + s dir[i] (edges in line: where edge i's moved start is)
     const Vec2 w{from[i].x - from[j].x, from[i].y - from[j].y};
-    const double t = crossOf(w, dir[i]) / crossOf(dir[j], dir[i]);
-    out.push_back(add(from[j], dir[j], t));
+    const double turn = crossOf(dir[j], dir[i]);
+    out.push_back(std::abs(turn) < 1e-9 ? from[i] : add(from[j], dir[j], crossOf(w, dir[i]) / turn));
   }
   return out;
 }
@@ -178,15 +179,25 @@ protected:
 
   rviz::Property* cue() { return path_->subProp("Off-view cue"); }
 
-  /// The lit area by image_geometry: the floor under the image's four outer corners (pixel edges;
-  /// an ideal lens: straight edges between them).
-  std::vector<Vec2> litArea() const
+  /// The lit area by image_geometry (cv::undistortPoints for a lens with D): the floor under the
+  /// image's outer pixel edges, `per_edge` points along each edge (an ideal lens: its corners do).
+  std::vector<Vec2> litArea(const sensor_msgs::CameraInfo& info, int per_edge = 1) const
   {
-    const PixelOracle oracle(info_, kDemoMount);
+    const PixelOracle oracle(info, kDemoMount);
     const double w = oracle.imageWidth(), h = oracle.imageHeight();
-    return {oracle.floorPoint({-0.5, -0.5}), oracle.floorPoint({w - 0.5, -0.5}), oracle.floorPoint({w - 0.5, h - 0.5}),
-            oracle.floorPoint({-0.5, h - 0.5})};
+    const std::vector<Vec2> corners{{-0.5, -0.5}, {w - 0.5, -0.5}, {w - 0.5, h - 0.5}, {-0.5, h - 0.5}};
+    std::vector<Vec2> lit;
+    for (std::size_t c = 0; c < 4; ++c)
+    {
+      const Vec2 a = corners[c], b = corners[(c + 1) % 4];
+      for (int k = 0; k < per_edge; ++k)
+      {
+        lit.push_back(oracle.floorPoint(add(a, Vec2{b.x - a.x, b.y - a.y}, double(k) / per_edge)));
+      }
+    }
+    return lit;
   }
+  std::vector<Vec2> litArea() const { return litArea(info_); }
 
   QRgb colourAt(const QImage& frame, const Vec2& floor) const
   {
@@ -265,6 +276,29 @@ TEST_F(OffViewTest, PathLeavingTheLitAreaGetsAnEdgeArrowAndNoneOnceVisible)
   publishPath(kAhead);
   expectNothingDrawn("path visible");
   EXPECT_GT(countColour(imagePart(grab()), kArrowMagenta), 100) << "the arrows are in view";
+}
+
+TEST_F(OffViewTest, TheLitAreaFollowsTheLensDistortion)
+{
+  // The same lens with k1 = 0.5 on the cue's own topic (the ProjectorCamera keeps the ideal one):
+  // a pixel's ray is undistortPoints of it, so the lit area's corners come in and its edges bulge.
+  sensor_msgs::CameraInfo distorted = info_;
+  distorted.distortion_model = "plumb_bob";
+  distorted.D = {0.5, 0.0, 0.0, 0.0, 0.0};
+  ASSERT_TRUE(pathWithCue(kLeftwards, M_PI / 2, kOwnInfo));
+  ros::Publisher info = nh_.advertise<sensor_msgs::CameraInfo>(kOwnInfo, 1, true);
+  info.publish(distorted);
+  const Vec2 target{kRobotX, 1.5};
+  // FloorFootprint's outline: 8 rays per image edge, evenly in pixels (floor_footprint.h).
+  const Vec2 tip = nearestOn(inset(litArea(distorted, 8), kMargin), target);
+  const Vec2 ideal_tip = nearestOn(inset(litArea(), kMargin), target);
+  std::printf("edge arrow's tip: %.4f %.4f through the distortion, %.4f %.4f without\n", tip.x, tip.y, ideal_tip.x,
+              ideal_tip.y);
+  ASSERT_GT(std::hypot(tip.x - ideal_tip.x, tip.y - ideal_tip.y), 0.05) << "the distortion must move the arrow";
+  const Vec2 direction{0.0, 1.0};
+  const QImage frame = grabUntil([&](const QImage& image) { return cyanAt(image, add(tip, direction, -0.15)); });
+  expectArrow(frame, tip, direction);
+  EXPECT_TRUE(statusSays("edge arrow")) << status();
 }
 
 TEST_F(OffViewTest, TurnInPlaceShowsTheGlyphOnTheLitAreaTurningTheRightWay)
