@@ -1,6 +1,8 @@
 #include "rviz_projector/displays/off_view_source.h"
 
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include <OgreQuaternion.h>
 #include <OgreVector3.h>
@@ -19,6 +21,16 @@ namespace
 /// Rays of the lens are followed this far (metres): a lit area farther away is not a floor patch.
 constexpr double kMaxThrow = 10.0;
 }  // namespace
+
+bool OffViewSource::Key::operator==(const Key& o) const
+{
+  // OffViewParameters holds doubles only: compared bit for bit.
+  static_assert(std::is_trivially_copyable<OffViewParameters>::value &&
+                    sizeof(OffViewParameters) % sizeof(double) == 0,
+                "OffViewParameters: plain doubles");
+  return path_id == o.path_id && path_size == o.path_size && lit_revision == o.lit_revision && robot == o.robot &&
+         std::memcmp(&parameters, &o.parameters, sizeof(OffViewParameters)) == 0;
+}
 
 void OffViewSource::subscribe(ros::NodeHandle& nh, const std::string& topic)
 {
@@ -42,7 +54,7 @@ void OffViewSource::clear()
   check_ = LensCheck();
   ++lens_revision_;
   lit_.clear();
-  cue_.reset();
+  resetCue();
 }
 
 void OffViewSource::onInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
@@ -63,14 +75,15 @@ void OffViewSource::onInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
 
 const OffViewResult& OffViewSource::nothing(CueStatus::Level level, const std::string& why)
 {
-  cue_.reset();
+  resetCue();
   status_ = CueStatus{level, why + ": no off-view cue"};
   return empty_;
 }
 
-const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const std::vector<Vec2>& path,
-                                          const std::vector<double>& lengths, bool robot_known,
-                                          const OffViewInput& robot, const OffViewParameters& parameters)
+const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const void* path_id,
+                                          const std::vector<Vec2>& path, const std::vector<double>& lengths,
+                                          bool robot_known, const OffViewInput& robot,
+                                          const OffViewParameters& parameters)
 {
   const std::string& topic = subscription_.topic();
   if (!subscription_.error().empty())
@@ -91,7 +104,8 @@ const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const std:
   }
   if (frame_id_.empty())
   {
-    return nothing(CueStatus::Level::Error, "The CameraInfo on " + topic + " has an empty frame_id (no projector pose)");
+    return nothing(CueStatus::Level::Error,
+                   "The CameraInfo on " + topic + " has an empty frame_id (no projector pose)");
   }
   Ogre::Vector3 position;
   Ogre::Quaternion orientation;
@@ -115,6 +129,7 @@ const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const std:
         orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
     const FloorFootprint footprint(lens_, optical_to_fixed, kMaxThrow, distortion_);
     lit_complete_ = footprint.complete();
+    ++lit_changes_;
     lit_.clear();
     for (const Vec3& p : footprint.outline())
     {
@@ -130,6 +145,14 @@ const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const std:
   {
     return nothing(CueStatus::Level::Warn, "No robot pose (see the Robot status)");
   }
+  const Key key{path_id, path.size(), lit_changes_,
+                {robot.robot.x, robot.robot.y, robot.heading, robot.start, robot.drawn_from}, parameters};
+  if (key == built_)
+  {
+    return cue_.result();  // as last time (status_ too)
+  }
+  built_ = key;
+  ++builds_;
   OffViewInput input = robot;
   input.lit = lit_;
   const OffViewResult& result = cue_.build(path, lengths, input, parameters);

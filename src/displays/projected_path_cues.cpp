@@ -152,8 +152,8 @@ void ProjectedPathDisplay::buildOffView(const PathCueInput& input)
   // The cue keeps clear of the arrows that are drawn: from the horizon's start with the horizon on.
   robot.drawn_from = cue_settings_.horizon ? cue_next_.horizonStart() : 0.0;
   const OffViewResult& cue =
-      off_view_source_.cueAt(*context_->getFrameManager(), floor_points_, cue_next_.lengths(), input.robot_known,
-                             robot, off_view_properties_->parameters());
+      off_view_source_.cueAt(*context_->getFrameManager(), last_msg_.get(), floor_points_, cue_next_.lengths(),
+                             input.robot_known, robot, off_view_properties_->parameters());
   off_view_next_.assign(cue.triangles.begin(), cue.triangles.end());
   showCueStatus("Off-view cue", off_view_source_.status(), off_view_status_shown_);
 }

@@ -235,7 +235,8 @@ protected:
       EXPECT_TRUE(cyanAt(frame, p)) << back << " m behind the tip (" << p.x << ", " << p.y
                                     << "): " << describe(colourAt(frame, p));
     }
-    EXPECT_TRUE(blackAt(frame, add(tip, direction, 0.04))) << "beyond the tip: " << describe(colourAt(frame, add(tip, direction, 0.04)));
+    const Vec2 beyond = add(tip, direction, 0.04);
+    EXPECT_TRUE(blackAt(frame, beyond)) << "beyond the tip: " << describe(colourAt(frame, beyond));
     for (const double side : {-0.08, 0.08})
     {
       const Vec2 p = add(add(tip, direction, -0.22), across, side);
@@ -266,10 +267,11 @@ TEST_F(OffViewTest, PathLeavingTheLitAreaGetsAnEdgeArrowAndNoneOnceVisible)
   EXPECT_TRUE(statusSays("edge arrow")) << status();
   EXPECT_EQ(statusOf(path_, "Off-view cue").level, rviz::StatusProperty::Ok);
   EXPECT_GT(path_->offViewTriangleCount(), 0u);
-  // Nothing changes: no upload, however many frames rviz draws.
-  const std::size_t builds = path_->meshBuilds();
+  // Nothing changes: no upload and no new cue, however many frames rviz draws.
+  const std::size_t builds = path_->meshBuilds(), cues = path_->offViewSource().builds();
   EXPECT_TRUE(waitForMainViewFrames(20));
   EXPECT_EQ(path_->meshBuilds(), builds) << "the same cue uploaded again";
+  EXPECT_EQ(path_->offViewSource().builds(), cues) << "the same cue worked out again";
 
   // The robot turns to the path straight ahead: the path is in view, the cue goes.
   publishStaticTransform("map", "base_link", kRobotX, 0.0, 0.0, 0.0);

@@ -40,21 +40,29 @@ public:
   /// Forgets the CameraInfo and the cue's state (rviz's Reset, a new topic).
   void clear();
   /// Forgets the cue's show/hide state only (a backward jump of ROS time, the group switched off).
-  void resetCue() { cue_.reset(); }
+  void resetCue()
+  {
+    cue_.reset();
+    built_ = Key();
+  }
 
   /**
    * The cue for this instant: the lit area from the last CameraInfo and the projector's latest tf
    * pose in the fixed frame (recomputed only when the lens or the pose changed), then
    * OffViewCue::build. `robot_known` false, or no usable lit area: an empty result (kind None, no
-   * triangles) and the status says why.
+   * triangles) and the status says why. `path_id` identifies the path (the message drawn): with
+   * the same path, robot, lit area and parameters as the last call, the last result is returned
+   * without building it again (a standing robot costs nothing per frame).
    */
-  const OffViewResult& cueAt(rviz::FrameManager& frames, const std::vector<Vec2>& path,
+  const OffViewResult& cueAt(rviz::FrameManager& frames, const void* path_id, const std::vector<Vec2>& path,
                              const std::vector<double>& lengths, bool robot_known, const OffViewInput& robot,
                              const OffViewParameters& parameters);
   /// What the "Off-view cue" status says (after cueAt).
   const CueStatus& status() const { return status_; }
   /// The lit area of the last cueAt (empty when there was none), in the fixed frame.
   const std::vector<Vec2>& lit() const { return lit_; }
+  /// How often OffViewCue::build ran (tests: not again while nothing changed).
+  std::size_t builds() const { return builds_; }
   /// CameraInfo messages taken so far (tests wait for theirs).
   std::size_t messages() const { return messages_; }
   /// Whether a CameraInfo with a new lens or frame arrived since the last call.
@@ -83,9 +91,21 @@ private:
   bool lit_complete_ = false;
   std::vector<Vec2> lit_;
   OffViewCue cue_;
+  /// What the cue was last built from (built again only when one of these changed).
+  struct Key
+  {
+    const void* path_id = nullptr;
+    std::size_t path_size = 0;
+    std::uint64_t lit_revision = ~0ull;
+    std::array<double, 5> robot{};  ///< x, y, heading, start, drawn_from
+    OffViewParameters parameters;
+    bool operator==(const Key& o) const;
+  } built_;
+  std::uint64_t lit_changes_ = 0;  ///< bumped whenever lit_ is recomputed
   OffViewResult empty_;
   CueStatus status_;
   bool news_ = false;
   std::size_t messages_ = 0;
+  std::size_t builds_ = 0;
 };
 }  // namespace rviz_projector
