@@ -289,7 +289,6 @@ TEST_F(OffViewTest, TheLitAreaFollowsTheLensDistortion)
   distorted.D = {0.5, 0.0, 0.0, 0.0, 0.0};
   ASSERT_TRUE(pathWithCue(kLeftwards, M_PI / 2, kOwnInfo));
   ros::Publisher info = nh_.advertise<sensor_msgs::CameraInfo>(kOwnInfo, 1, true);
-  info.publish(distorted);
   const Vec2 target{kRobotX, 1.5};
   // FloorFootprint's outline: 8 rays per image edge, evenly in pixels (floor_footprint.h).
   const Vec2 tip = nearestOn(inset(litArea(distorted, 8), kMargin), target);
@@ -298,7 +297,12 @@ TEST_F(OffViewTest, TheLitAreaFollowsTheLensDistortion)
               ideal_tip.y);
   ASSERT_GT(std::hypot(tip.x - ideal_tip.x, tip.y - ideal_tip.y), 0.05) << "the distortion must move the arrow";
   const Vec2 direction{0.0, 1.0};
-  const QImage frame = grabUntil([&](const QImage& image) { return cyanAt(image, add(tip, direction, -0.15)); });
+  // First the ideal lens, then (robot and path standing) the distorting one: the arrow follows.
+  info.publish(info_);
+  QImage frame = grabUntil([&](const QImage& image) { return cyanAt(image, add(ideal_tip, direction, -0.15)); });
+  expectArrow(frame, ideal_tip, direction);
+  info.publish(distorted);
+  frame = grabUntil([&](const QImage& image) { return blackAt(image, add(ideal_tip, direction, -0.04)); });
   expectArrow(frame, tip, direction);
   EXPECT_TRUE(statusSays("edge arrow")) << status();
 }
