@@ -35,6 +35,16 @@ SpacingParameters parametersFrom(Input& in)
   p.destination_gap = in.size(0.5);
   // The default bound (10^5) now and then: each such input may place 10^5 arrows, twice.
   p.max_arrows = in.integer<std::uint8_t>() < 16 ? SpacingParameters().max_arrows : in.integer<std::size_t>(0, 3000);
+  // Speed-coded spacing now and then, with any values (sanitised by speedCodedSpacing): the same
+  // invariants hold (on the path, in order, anchored at the destination).
+  if (in.integer<std::uint8_t>() < 80)
+  {
+    p.speed_coding.enabled = true;
+    p.speed_coding.speed = in.size(3.0);
+    p.speed_coding.deceleration = in.size(2.0);
+    p.speed_coding.time_step = in.size(2.0);
+    p.speed_coding.min_spacing = in.size(0.5);
+  }
   return p;
 }
 

@@ -155,7 +155,8 @@ void PathSpacer::accumulateFromEnd(const std::vector<Vec2>& points)
 void PathSpacer::placeExact()
 {
   const double radius = 0.5 * parameters_.circle_diameter;
-  const double first_tip = radius + parameters_.destination_gap + phase_;
+  const bool speed_coded = parameters_.speed_coding.enabled;
+  const double first_tip = radius + parameters_.destination_gap + (speed_coded ? 0.0 : phase_);
   const double arrow_length = parameters_.arrow.length();
   const double total = result_.path_length;
   const std::vector<Vec2>& points = *points_in_use_;
@@ -163,19 +164,38 @@ void PathSpacer::placeExact()
   {
     return;
   }
-  // Count first so the vector is sized once; the count is bounded by max_arrows.
-  const double fitting = std::floor((total - first_tip - arrow_length) / parameters_.spacing) + 1.0;
+  // Count first so the vector is sized once; the count is bounded by max_arrows. Speed-coded tips
+  // are listed first (their spacing varies), the others follow from the constant spacing.
   std::size_t count = parameters_.max_arrows;
-  if (fitting < static_cast<double>(parameters_.max_arrows))
+  if (speed_coded)
   {
-    count = static_cast<std::size_t>(fitting);
+    result_.tip_from_end.clear();
+    for (double tip_s = first_tip; tip_s + arrow_length <= total;
+         tip_s += speedCodedSpacing(parameters_.speed_coding, tip_s))
+    {
+      if (result_.tip_from_end.size() == parameters_.max_arrows)
+      {
+        result_.truncated = true;
+        break;
+      }
+      result_.tip_from_end.push_back(tip_s);
+    }
+    count = result_.tip_from_end.size();
   }
   else
   {
-    result_.truncated = fitting > static_cast<double>(parameters_.max_arrows);
+    const double fitting = std::floor((total - first_tip - arrow_length) / parameters_.spacing) + 1.0;
+    if (fitting < static_cast<double>(parameters_.max_arrows))
+    {
+      count = static_cast<std::size_t>(fitting);
+    }
+    else
+    {
+      result_.truncated = fitting > static_cast<double>(parameters_.max_arrows);
+    }
+    result_.tip_from_end.resize(count);
   }
   result_.arrows.resize(count);
-  result_.tip_from_end.resize(count);
 
   // Tips and tails each have their own walker: both sequences grow, but a tail may lie beyond the
   // next tip (arrow longer than the spacing), so one shared walker could not stay monotonic.
@@ -186,7 +206,7 @@ void PathSpacer::placeExact()
   std::size_t placed = 0;
   for (std::size_t k = 0; k < count; ++k)
   {
-    const double tip_s = first_tip + static_cast<double>(k) * parameters_.spacing;
+    const double tip_s = speed_coded ? result_.tip_from_end[k] : first_tip + static_cast<double>(k) * parameters_.spacing;
     const double tail_s = tip_s + arrow_length;
     if (tail_s > total)
     {

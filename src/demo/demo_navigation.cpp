@@ -13,6 +13,9 @@
 //           /projector/camera_info   sensor_msgs/CameraInfo (latched)
 //           /demo/obstacle           visualization_msgs/Marker (latched, 1 Hz)
 //           /demo/robot_footprint    geometry_msgs/PolygonStamped (10 Hz)
+//           /demo/odom               nav_msgs/Odometry (odom -> base_link, at ~tf_rate: the pose and
+//                                    the unicycle's twist in base_link, for the Stop zone and motion
+//                                    compensation)
 //           /demo/goal               geometry_msgs/PoseStamped (latched, on every new goal)
 //           ~status_topic (/move_base/status) actionlib_msgs/GoalStatusArray (10 Hz): the leg's goal
 //           ACTIVE, then SUCCEEDED at the goal. With ~success_dwell and ~start_delay (s, default 0)
@@ -34,6 +37,7 @@
 #include <geometry_msgs/PolygonStamped.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -110,6 +114,7 @@ public:
     goal_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("/demo/goal", 1, true);
     obstacle_pub_ = nh_.advertise<visualization_msgs::Marker>("/demo/obstacle", 1, true);
     footprint_pub_ = nh_.advertise<geometry_msgs::PolygonStamped>("/demo/robot_footprint", 1);
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>("/demo/odom", 10);
     status_pub_ = nh_.advertise<actionlib_msgs::GoalStatusArray>(
         pnh_.param<std::string>("status_topic", "/move_base/status"), 1);
     start_delay_ = std::max(0.0, pnh_.param("start_delay", 0.0));
@@ -388,6 +393,14 @@ private:
     transforms[1].child_frame_id = kBaseFrame;
     transforms[1].transform = tf2::toMsg(odom_to_base);
     tf_broadcaster_.sendTransform(transforms);
+
+    nav_msgs::Odometry odom;
+    odom.header = transforms[1].header;
+    odom.child_frame_id = kBaseFrame;
+    tf2::toMsg(odom_to_base, odom.pose.pose);
+    odom.twist.twist.linear.x = robot_.speed();
+    odom.twist.twist.angular.z = robot_.turnRate();
+    odom_pub_.publish(odom);
   }
 
   void publishProjectorTf()
@@ -490,6 +503,7 @@ private:
   std::uint8_t goal_status_{actionlib_msgs::GoalStatus::ACTIVE};
   ros::Publisher obstacle_pub_;
   ros::Publisher footprint_pub_;
+  ros::Publisher odom_pub_;
   ros::Publisher camera_info_pub_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;

@@ -282,6 +282,9 @@ public:
   void setPlan(std::vector<Pose2D> plan) { plan_ = std::move(plan); }
 
   const Pose2D& pose() const { return pose_; }
+  /// Forward speed (m/s) and turn rate (rad/s) of the last step: the odometry's twist.
+  double speed() const { return v_; }
+  double turnRate() const { return w_; }
 
   void step(double dt)
   {

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include <OgreMaterialManager.h>
+#include <OgreRenderQueue.h>
 #include <OgrePass.h>
 #include <OgreResourceGroupManager.h>
 #include <OgreSceneManager.h>
@@ -171,6 +172,14 @@ void FloorMesh::setSolidTriangles(const std::vector<MeshVertex>& triangles, doub
 void FloorMesh::setVisibilityFlags(std::uint32_t flags)
 {
   renderable_->setVisibilityFlags(flags);
+}
+
+void FloorMesh::setLayer(std::uint16_t layer)
+{
+  // Render priorities within the main queue group: OGRE draws them in increasing order (each one's
+  // opaque, then translucent objects), after the default priority's.
+  renderable_->setRenderQueueGroupAndPriority(renderable_->getRenderQueueGroup(),
+                                              static_cast<Ogre::ushort>(OGRE_RENDERABLE_DEFAULT_PRIORITY + layer));
 }
 
 void FloorMesh::setShown(bool shown)

@@ -3,6 +3,7 @@
 // each frame's ROS time (ProjectionAnimation: the projector ticks it before a frame, rviz's update
 // for the main view), drawn only when the picture changed.
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include <rviz/display_context.h>
@@ -37,9 +38,23 @@ void ProjectedPathDisplay::checkMarchingMode()
   {
     setStatus(rviz::StatusProperty::Warn, "Marching", "Marching needs Spacing mode Exact: the arrows stand still");
   }
+  else if (cue_settings_.marching && spacer_.parameters().speed_coding.enabled)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Marching",
+              "Marching is not applied with Stop zone > Speed-coded spacing: the arrows stand still");
+  }
   else
   {
     deleteStatus("Marching");
+  }
+  if (spacer_.parameters().speed_coding.enabled && spacer_.parameters().mode == SpacingMode::Paper)
+  {
+    setStatus(rviz::StatusProperty::Warn, "Speed-coded spacing",
+              "Speed-coded spacing needs Spacing mode Exact: the arrows keep Spacing");
+  }
+  else
+  {
+    deleteStatus("Speed-coded spacing");
   }
 }
 
@@ -58,6 +73,11 @@ void ProjectedPathDisplay::updateCues()
   cue_settings_.corridor_parameters = corridor_properties_->parameters();
   cue_settings_.off_view = off_view_properties_->enabled->getBool();
   cue_source_.setParameters(cue_properties_->goalParameters());
+  if (!stop_properties_->speedCoding(0.0).enabled)
+  {
+    coded_speed_ = 0.0;
+  }
+  spacer_.setParameters(spacingParameters());
   checkMarchingMode();
   if (!cuesActive() && arrow_mesh_)
   {
@@ -228,16 +248,28 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
     input.speed = stop_source_.speedAt(input.time);
     showCueStatus("Stop zone", stop_source_.status(input.time), stop_status_shown_);
   }
+  bool respace = false;
+  if (spacer_.parameters().speed_coding.enabled)
+  {
+    // In 1 cm/s steps: the filtered speed changes every frame, the arrows only when it really does.
+    const double speed = input.speed.moving ? std::round(input.speed.speed * 100.0) / 100.0 : 0.0;
+    if (speed != coded_speed_)
+    {
+      coded_speed_ = speed;
+      spacer_.setParameters(spacingParameters());
+      respace = true;
+    }
+  }
   if (!last_msg_)
   {
     return;
   }
   const SpacingParameters& parameters = spacer_.parameters();
   // Marching needs Exact spacing (a Marching warning says so otherwise): no re-spacing per frame then.
-  const double phase = cue_settings_.marching && parameters.mode == SpacingMode::Exact
+  const double phase = cue_settings_.marching && parameters.mode == SpacingMode::Exact && !parameters.speed_coding.enabled
                            ? marchingPhase(cue_settings_.marching_speed, input.time, parameters.spacing)
                            : 0.0;
-  if (phase != spaced_phase_)
+  if (respace || phase != spaced_phase_)
   {
     spaced_ = &spacer_.space(floor_points_, phase);
     spaced_phase_ = phase;

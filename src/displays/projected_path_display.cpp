@@ -154,6 +154,14 @@ void ProjectedPathDisplay::onInitialize()
   stop_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   corridor_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   off_view_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  // Bottom to top where they overlap: corridor, stop zone, destination, arrows, glyph, off-view cue
+  // (which keeps off the arrows drawn, but lies on the corridor or stop zone when they fill the lit area).
+  corridor_mesh_->setLayer(1);
+  stop_mesh_->setLayer(2);
+  circle_mesh_->setLayer(3);
+  arrow_mesh_->setLayer(4);
+  glyph_mesh_->setLayer(5);
+  off_view_mesh_->setLayer(6);
   cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
   updateStateTopic();
@@ -279,6 +287,7 @@ SpacingParameters ProjectedPathDisplay::spacingParameters() const
   p.arrow.head_length = head_length_property_->getFloat();
   p.arrow.head_diameter = head_diameter_property_->getFloat();
   p.circle_diameter = circle_diameter_property_->getFloat();
+  p.speed_coding = stop_properties_->speedCoding(coded_speed_);
   return p;
 }
 
@@ -409,8 +418,8 @@ void ProjectedPathDisplay::checkPathTimeout()
 
 void ProjectedPathDisplay::updateSpacing()
 {
-  checkMarchingMode();
   spacer_.setParameters(spacingParameters());
+  checkMarchingMode();
   rebuild();
 }
 

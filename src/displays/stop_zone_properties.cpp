@@ -56,6 +56,21 @@ StopZoneProperties::StopZoneProperties(rviz::Display* display)
                        enabled, display, SLOT(updateStopZone()));
   width = boundedFloat("Width", static_cast<float>(defaults.width), 0.01f, 10.0f,
                        "Metres across the path, centred on it.", enabled, display, SLOT(updateStopZone()));
+  const SpeedCoding coding;
+  speed_coded = new rviz::BoolProperty(
+      "Speed-coded spacing", false,
+      "Exact spacing only: the arrows are spaced by the speed the robot will have there x Time step (at least Min "
+      "spacing) instead of Spacing, so they crowd where it slows down for its destination. The speed is this "
+      "group's filtered odometry speed, braking with Deceleration to stop at the destination (min(v, sqrt(2 a d)), "
+      "d the path left to the destination); a standing robot gets Min spacing. Marching is not applied then.",
+      enabled, SLOT(updateStopZone()), display);
+  speed_coded->setDisableChildrenIfFalse(true);
+  time_step = boundedFloat("Time step", static_cast<float>(coding.time_step), 0.05f, 10.0f,
+                           "Seconds of driving between two arrows (Speed-coded spacing).", speed_coded, display,
+                           SLOT(updateStopZone()));
+  min_spacing = boundedFloat("Min spacing", static_cast<float>(coding.min_spacing), 0.01f, 10.0f,
+                             "Closest two arrows come, metres (Speed-coded spacing).", speed_coded, display,
+                             SLOT(updateStopZone()));
 }
 
 QString StopZoneProperties::checkLoaded(const rviz::Config& config) const
@@ -67,6 +82,11 @@ QString StopZoneProperties::checkLoaded(const rviz::Config& config) const
     check.number(group.mapGetChild(p->getName()), p);
   }
   check.choice(group.mapGetChild(style->getName()), style, {"Filled", "Hatched"}, "Filled");
+  const rviz::Config coded = group.mapGetChild(speed_coded->getName());
+  for (rviz::FloatProperty* p : {time_step, min_spacing})
+  {
+    check.number(coded.mapGetChild(p->getName()), p);
+  }
   return check.report();
 }
 
@@ -84,5 +104,15 @@ StopZoneParameters StopZoneProperties::parameters() const
 std::string StopZoneProperties::wantedTopic() const
 {
   return enabled->getBool() ? topic->getStdString() : std::string();
+}
+SpeedCoding StopZoneProperties::speedCoding(double speed) const
+{
+  SpeedCoding coding;
+  coding.enabled = enabled->getBool() && speed_coded->getBool();
+  coding.speed = speed;
+  coding.deceleration = decimal(deceleration);
+  coding.time_step = decimal(time_step);
+  coding.min_spacing = decimal(min_spacing);
+  return coding;
 }
 }  // namespace rviz_projector

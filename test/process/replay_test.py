@@ -61,9 +61,10 @@ checkpoint on a blink edge would see it).
      - "Scaling: ..." on the Projector: the test's X screen is not 1280x800 (Xvfb's single
        1920x1080 screen; the CI dummy server has a 1280x800 projector screen): about the test's
        screen, not the replay;
-     - "No path received yet", "No goal status received yet", "No scan received yet" while ROS
-       time is at most 0.5 s past the bag's first path, status or scan: rviz resets every display
-       when ROS time jumps back, and the pass has not replayed one yet;
+     - "No path received yet", "No goal status received yet", "No scan received yet", "No odometry
+       received yet" (Stop zone), "No footprint received yet" (Corridor) while ROS time is at most
+       0.5 s past the bag's first path, status, scan, odometry or footprint: rviz resets every
+       display when ROS time jumps back, and the pass has not replayed one yet;
      - "Waiting for tf after ROS time started or jumped back" (ProjectorCamera, ProjectionMask) and rviz's own
        TF display missing a frame, while ROS time is at most 1 s past the bag's start: rviz clears
        its tf buffer at the jump and the pass has not replayed the transforms yet (the displays
@@ -110,8 +111,10 @@ STATUS_TOPIC = "/move_base/status"
 SCAN_TOPIC = "/demo/scan"
 CHECKPOINT_TOPIC = "/replay_test/checkpoint"
 # What demo.rviz shows or needs (the Path, goal state, mask scan, rviz's markers), tf and the lens.
+ODOM_TOPIC = "/demo/odom"  # the demo config's Stop zone
+FOOTPRINT_TOPIC = "/demo/robot_footprint"  # the demo config's Corridor
 RECORDED_TOPICS = ["/tf", "/tf_static", PATH_TOPIC, STATUS_TOPIC, "/projector/camera_info", SCAN_TOPIC,
-                   "/demo/pedestrian", "/demo/obstacle", "/demo/robot_footprint", CHECKPOINT_TOPIC]
+                   "/demo/pedestrian", "/demo/obstacle", FOOTPRINT_TOPIC, ODOM_TOPIC, CHECKPOINT_TOPIC]
 RECORD_SECONDS = 10
 GOAL_AGE = 3.0  # s: the recording starts once the demo's goal is this old (no pre-motion warning)
 RECORD_LEAD = 0.35  # s after a plan: rosbag record takes ~0.4 s to subscribe, the next plan is 1 s later
@@ -230,6 +233,8 @@ class BagFacts(object):
         self.first_path = None
         self.first_status = None
         self.first_scan = None
+        self.first_odom = None
+        self.first_footprint = None
         self.checkpoints = []     # bag times of the checkpoint messages
         self.before = []          # bag time of the message played before each checkpoint (for the log)
         self.robot = []           # (bag time, x, y, yaw) of odom -> base_link
@@ -247,6 +252,10 @@ class BagFacts(object):
                     self.first_status = t
                 elif topic == SCAN_TOPIC and self.first_scan is None:
                     self.first_scan = t
+                elif topic == ODOM_TOPIC and self.first_odom is None:
+                    self.first_odom = t
+                elif topic == FOOTPRINT_TOPIC and self.first_footprint is None:
+                    self.first_footprint = t
                 elif topic == "/tf":
                     for tr in msg.transforms:
                         if tr.child_frame_id == "base_link":
@@ -870,7 +879,9 @@ class ReplaySession(object):
             return "tf not replayed yet in this pass (rviz clears its buffer when ROS time jumps back)"
         for text, first, what in (("No path received yet", f.first_path, "path"),
                                   ("No goal status received yet", f.first_status, "goal status"),
-                                  ("No scan received yet", f.first_scan, "scan")):
+                                  ("No scan received yet", f.first_scan, "scan"),
+                                  ("No odometry received yet", f.first_odom, "odometry"),
+                                  ("No footprint received yet", f.first_footprint, "footprint")):
             if text in status.message and first is not None and stamp <= first + 0.5:
                 return "before the pass's first %s (displays are reset when ROS time jumps back)" % what
         return None

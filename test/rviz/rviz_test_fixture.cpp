@@ -228,6 +228,20 @@ ros::Time monotonicTestStart(double multiple)
   last = std::max(now, multiple * std::ceil((last + 2.0) / multiple));
   return ros::Time(last);
 }
+namespace
+{
+/// `group`'s property at `path`: child names joined by '/' ("Speed-coded spacing/Time step").
+rviz::Property* descendant(rviz::Property* group, const std::string& path)
+{
+  rviz::Property* p = group;
+  for (const QString& name : QString::fromStdString(path).split('/'))
+  {
+    p = p == nullptr ? nullptr : p->subProp(name);
+  }
+  return p;
+}
+}  // namespace
+
 std::map<std::string, std::string> RvizTest::expectGroupSavedAndLoaded(const QString& group_name,
                                                                      const std::map<std::string, QVariant>& values)
 {
@@ -241,12 +255,12 @@ std::map<std::string, std::string> RvizTest::expectGroupSavedAndLoaded(const QSt
   rviz::Property* group = d->subProp(group_name);
   for (const auto& v : values)
   {
-    group->subProp(QString::fromStdString(v.first))->setValue(v.second);
+    descendant(group, v.first)->setValue(v.second);
   }
   group->setValue(true);
   for (const auto& v : values)
   {
-    shown[v.first] = group->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString();
+    shown[v.first] = descendant(group, v.first)->getValue().toString().toStdString();
   }
   QTemporaryDir dir;
   const QString file = dir.path() + "/saved.rviz";
@@ -270,7 +284,7 @@ std::map<std::string, std::string> RvizTest::expectGroupSavedAndLoaded(const QSt
   EXPECT_TRUE(again->getValue().toBool()) << "the group's switch";
   for (const auto& v : shown)
   {
-    EXPECT_EQ(again->subProp(QString::fromStdString(v.first))->getValue().toString().toStdString(), v.second) << v.first;
+    EXPECT_EQ(descendant(again, v.first)->getValue().toString().toStdString(), v.second) << v.first;
   }
   return shown;
 }

@@ -82,7 +82,8 @@ protected:
                               double yaw);
   /// A ProjectedPath with `values` set in its group `group`, the group switched on, saved to a
   /// file and loaded into a fresh rviz (this one closed): expects the switch and every value as the
-  /// first rviz showed it. Returns those shown values (the text of each property).
+  /// first rviz showed it. Returns those shown values (the text of each property). A name may be a
+  /// path of child names joined by '/' (a group inside the group).
   std::map<std::string, std::string> expectGroupSavedAndLoaded(const QString& group,
                                                                const std::map<std::string, QVariant>& values);
 

@@ -7,10 +7,12 @@
 // (windowPixel), never from the code under test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <nav_msgs/Odometry.h>
@@ -257,6 +259,128 @@ TEST_F(StopZoneTest, StartsWhereTheRobotIsOnThePath)
   EXPECT_TRUE(sameColour(colourAt(frame, {0.65, kSide}), kOrangeFill, 20)) << "ahead of the robot: the fill";
 }
 
+TEST_F(StopZoneTest, ArrowsAreDrawnOverTheZoneAlsoWhenTheyFade)
+{
+  // A fading horizon makes the arrows translucent: OGRE would sort them and the zone by their
+  // distance from the projector (the arrows' middle lies further away), drawing the bar over them.
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  path_->subProp("Horizon")->subProp("Length")->setValue(2.0);
+  path_->subProp("Horizon")->subProp("Fade")->setValue(1.0);
+  path_->subProp("Horizon")->setValue(true);
+  // The bar's far edge at x 1.30 (d = 1.0 m: v^2 + 0.3 v = 1), the bar on [1.25, 1.30]: across the
+  // head of the arrow whose tip is at 1.35 (tips every 0.25 m from 2.35 back; heads 0.08 long).
+  const double v = (-0.3 + std::sqrt(0.09 + 4.0)) / 2.0;
+  publishOdometry(v);
+  const double stop_x = kRobotX + stopDistance(v);
+  ASSERT_NEAR(stop_x, 1.30, 1e-9);
+  const QImage frame = barAt(stop_x);
+  saveShot(frame, "cues-stop-zone-under-arrows");
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.29, 0.0}), kArrowMagenta, 40))
+      << "arrow head over the bar: " << describe(colourAt(frame, {1.29, 0.0}));
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.275, 0.04}), kArrowMagenta, 40))
+      << "arrow head over the bar, off centre: " << describe(colourAt(frame, {1.275, 0.04}));
+  EXPECT_TRUE(sameColour(colourAt(frame, {1.275, 0.1}), kOrange, 30)) << "the bar beside the head";
+}
+
+namespace
+{
+/// Speed-coded spacing by hand: tips measured back from the destination, the first 0.15 m from it
+/// (circle radius 0.1 + gap 0.05), each next one max(min, min(v, sqrt(2 a d)) T) further; an arrow
+/// `arrow` long must fit on the path (`length`).
+std::vector<double> codedTips(double v, double a, double t, double min, double arrow, double length)
+{
+  std::vector<double> tips;
+  for (double d = 0.15; d + arrow <= length + 1e-9; d += std::max(min, std::min(v, std::sqrt(2.0 * a * d)) * t))
+  {
+    tips.push_back(d);
+  }
+  return tips;
+}
+}  // namespace
+
+TEST_F(StopZoneTest, SpeedCodedSpacingCrowdsTheArrowsWhereTheRobotBrakes)
+{
+  ASSERT_TRUE(pathWithStopZone(1.5));  // path length 1.2, destination at x 1.5 (in view)
+  path_->subProp("Shaft length")->setValue(0.03);  // arrows 0.07 m long: apart even at Min spacing
+  path_->subProp("Head length")->setValue(0.04);
+  zone()->subProp("Alpha")->setValue(0.0);  // no fill under the arrows (the opaque bar lies under them)
+  zone()->subProp("Deceleration")->setValue(0.1);
+  rviz::Property* coded = zone()->subProp("Speed-coded spacing");
+  coded->subProp("Time step")->setValue(0.5);
+  coded->subProp("Min spacing")->setValue(0.1);
+  coded->setValue(true);
+  // Tips on the centre line: the ends (largest x) of the magenta runs along y = 0.
+  const auto tipsIn = [&](const QImage& image) {
+    std::vector<double> tips;
+    bool inside = false;
+    for (double x = 0.5; x <= 1.45; x += 0.001)
+    {
+      const bool magenta = sameColour(colourAt(image, {x, 0.0}), kArrowMagenta, 60);
+      if (inside && !magenta)
+      {
+        tips.push_back(1.5 - (x - 0.001));  // back from the destination
+      }
+      inside = magenta;
+    }
+    std::reverse(tips.begin(), tips.end());
+    return tips;
+  };
+  const auto matches = [&](const QImage& image, std::vector<double> expected) {
+    // Judged where the whole arrow is surely lit: tips up to 0.9 m back from the destination
+    // (x >= 0.6; the lit area begins near x 0.45).
+    expected.erase(std::remove_if(expected.begin(), expected.end(), [](double d) { return d > 0.9; }), expected.end());
+    std::vector<double> tips = tipsIn(image);
+    tips.erase(std::remove_if(tips.begin(), tips.end(), [](double d) { return d > 0.9; }), tips.end());
+    if (tips.size() != expected.size())
+    {
+      return false;
+    }
+    for (std::size_t k = 0; k < tips.size(); ++k)
+    {
+      if (pixelDistance({1.5 - tips[k], 0.0}, {1.5 - expected[k], 0.0}) > 2.5)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  const auto describeTips = [&](const QImage& image) {
+    std::string out;
+    for (double d : tipsIn(image))
+    {
+      out += std::to_string(d) + " ";
+    }
+    return out;
+  };
+  // Standing (0 m/s): Min spacing everywhere.
+  publishOdometry(0.0);
+  const std::vector<double> standing = codedTips(0.0, 0.1, 0.5, 0.1, 0.07, 1.2);
+  ASSERT_EQ(standing.size(), 10u);  // 0.15, 0.25, ... 1.05 (0.07 long: the last tip at most 1.13)
+  const QImage still = grabUntil([&](const QImage& image) { return matches(image, standing); });
+  EXPECT_TRUE(matches(still, standing)) << "standing, tips back from the destination: " << describeTips(still);
+
+  // Driving at 0.4 m/s (settled: 5 time constants of the filter and more): braking from 0.4 m/s
+  // at 0.1 m/s^2 starts 0.8 m before the destination; the arrows crowd on that last stretch.
+  publishOdometry(0.4);
+  at(3.0);
+  publishOdometry(0.4);
+  const std::vector<double> driving = codedTips(0.4, 0.1, 0.5, 0.1, 0.07, 1.2);
+  ASSERT_EQ(driving.size(), 7u);  // 0.15, 0.25, 0.362, 0.496, 0.654, 0.835, 1.035
+  const QImage moving = grabUntil([&](const QImage& image) { return matches(image, driving); });
+  EXPECT_TRUE(matches(moving, driving)) << "0.4 m/s: " << describeTips(moving);
+  saveShot(moving, "cues-speed-coded");
+
+  // Off again: the constant Spacing (0.25 by default) back.
+  coded->setValue(false);
+  std::vector<double> constant;
+  for (double d = 0.15; d + 0.07 <= 1.2 + 1e-9; d += 0.25)
+  {
+    constant.push_back(d);
+  }
+  const QImage off = grabUntil([&](const QImage& image) { return matches(image, constant); });
+  EXPECT_TRUE(matches(off, constant)) << "off: " << describeTips(off);
+}
+
 TEST_F(StopZoneTest, HiddenWhileStandingAndOnStaleOrBadOdometry)
 {
   ASSERT_TRUE(pathWithStopZone(2.5));
@@ -327,7 +451,9 @@ TEST_F(StopZoneConfigTest, PropertiesAreSavedAndLoaded)
 {
   const std::map<std::string, QVariant> values = {
       {"Odometry topic", "/robot/odom"}, {"Deceleration", 1.25}, {"Reaction time", 0.45}, {"Style", "Hatched"},
-      {"Color", QColor(10, 20, 30)},     {"Alpha", 0.7},         {"Width", 0.55}};
+      {"Color", QColor(10, 20, 30)},     {"Alpha", 0.7},         {"Width", 0.55},
+      {"Speed-coded spacing", true},     {"Speed-coded spacing/Time step", 0.8},
+      {"Speed-coded spacing/Min spacing", 0.15}};
   std::map<std::string, std::string> shown = expectGroupSavedAndLoaded("Stop zone", values);
   EXPECT_EQ(shown["Style"], "Hatched");
   EXPECT_EQ(shown["Odometry topic"], "/robot/odom");
@@ -350,6 +476,7 @@ Displays:
   EXPECT_NEAR(d->subProp("Stop zone")->subProp("Deceleration")->getValue().toDouble(), 0.5, 1e-6);
   EXPECT_NEAR(d->subProp("Stop zone")->subProp("Reaction time")->getValue().toDouble(), 0.3, 1e-6);
   EXPECT_EQ(d->subProp("Stop zone")->subProp("Style")->getValue().toString().toStdString(), "Filled");
+  EXPECT_FALSE(d->subProp("Stop zone")->subProp("Speed-coded spacing")->getValue().toBool());
   spinFor(0.2);  // statuses settle (nothing to wait for: the absence of a status is the verdict)
   EXPECT_FALSE(statusOf(d, "Stop zone").present);
   EXPECT_FALSE(statusOf(d, "Config").present) << statusOf(d, "Config").text.toStdString();
@@ -369,6 +496,10 @@ Displays:
       Reaction time: .nan
       Width: abc
       Style: Zigzag
+      Speed-coded spacing:
+        Value: true
+        Time step: -1
+        Min spacing: .inf
 )");
   ASSERT_NE(d, nullptr);
   rviz::Property* zone = d->subProp("Stop zone");
@@ -377,7 +508,9 @@ Displays:
   EXPECT_EQ(zone->subProp("Style")->getValue().toString().toStdString(), "Filled");
   const Status s = statusOf(d, "Config");
   ASSERT_TRUE(s.present);
-  for (const char* name : {"Deceleration: '-2'", "Reaction time", "Width: 'abc'", "Style: 'Zigzag' -> Filled"})
+  EXPECT_GT(zone->subProp("Speed-coded spacing")->subProp("Time step")->getValue().toDouble(), 0.0);
+  for (const char* name : {"Deceleration: '-2'", "Reaction time", "Width: 'abc'", "Style: 'Zigzag' -> Filled",
+                           "Time step: '-1'", "Min spacing"})
   {
     EXPECT_NE(s.text.indexOf(name), -1) << name << " missing in: " << s.text.toStdString();
   }

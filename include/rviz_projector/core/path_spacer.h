@@ -16,6 +16,8 @@ namespace rviz_projector
  * (r = circle radius), its tail  shaft_length + head_length  further back; the arrow is the chord
  * tail -> tip. Arc lengths are summed from the destination, so trimming the start of the path
  * (the robot advancing along the same plan) leaves every remaining arrow bit-for-bit where it was.
+ * With SpacingParameters::speed_coding enabled, tip k+1 lies speedCodedSpacing(tip k) beyond tip k
+ * instead (speed_spacing.h), still counted from the destination.
  *
  * Paper mode: Algorithm 1 of the paper, as the reference code runs it: keep the destination; from
  * the last kept pose walk back to the first pose at least `spacing` away in (x, y)

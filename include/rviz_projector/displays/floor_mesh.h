@@ -45,6 +45,12 @@ public:
   void setShown(bool shown);
   /// OGRE visibility flags of the mesh (which viewports show it); rviz sets them for displays' nodes.
   void setVisibilityFlags(std::uint32_t flags);
+  /// Where the mesh lies in a stack of floor layers drawn at (almost) the same height: layers are
+  /// drawn in increasing order, so a higher layer always covers a lower one where they overlap
+  /// (the arrows over the stop zone's bar). Without it OGRE sorts translucent meshes by their
+  /// distance from the camera, which changes with their shapes: the order would flip from frame
+  /// to frame. Opaque geometry of layer 0 (the default: the mask's occluders) is drawn first.
+  void setLayer(std::uint16_t layer);
 
   /// Number of triangles currently drawn.
   std::size_t triangleCount() const { return triangle_count_; }

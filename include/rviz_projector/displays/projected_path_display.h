@@ -185,6 +185,7 @@ private:
   CueDrawing cue_drawn_;  // on the meshes (swapped with cue_next_: no allocation)
   GoalCueFrame::Colour cue_colour_drawn_ = GoalCueFrame::Colour::Normal;
   double spaced_phase_ = 0.0;       // marching phase spaced_ was computed with
+  double coded_speed_ = 0.0;        // Speed-coded spacing: the speed (cm/s steps) spaced_ was computed with
   ros::Time last_advance_;
   CueStatus robot_status_shown_;
   CueStatus state_status_shown_;

@@ -4,6 +4,7 @@
 
 #include <QString>
 
+#include "rviz_projector/core/speed_spacing.h"
 #include "rviz_projector/core/stop_zone.h"
 
 namespace rviz
@@ -30,6 +31,8 @@ struct StopZoneProperties
   StopZoneParameters parameters() const;
   /// The group is on and names a topic: what to subscribe to (empty: nothing).
   std::string wantedTopic() const;
+  /// Speed-coded spacing (on only with the group on) for a robot driving at `speed` m/s.
+  SpeedCoding speedCoding(double speed) const;
 
   rviz::BoolProperty* enabled;           ///< the group "Stop zone"
   rviz::RosTopicProperty* topic;         ///< child: nav_msgs/Odometry
@@ -39,5 +42,8 @@ struct StopZoneProperties
   rviz::ColorProperty* color;            ///< child
   rviz::FloatProperty* alpha;            ///< child: opacity of the fill or stripes
   rviz::FloatProperty* width;            ///< child, metres across the path
+  rviz::BoolProperty* speed_coded;       ///< child group "Speed-coded spacing" (off by default)
+  rviz::FloatProperty* time_step;        ///< its child, s
+  rviz::FloatProperty* min_spacing;      ///< its child, metres
 };
 }  // namespace rviz_projector
