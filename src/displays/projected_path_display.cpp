@@ -228,9 +228,13 @@ void ProjectedPathDisplay::reset()
   cue_source_.clear();
   stop_source_.clear();
   corridor_source_.clear();
-  off_view_source_.clear();
+  off_view_source_.resetCue();  // the lens stays: a latched CameraInfo does not come again
+  // rviz's Reset cleared every status: each is shown again when next worked out.
   robot_status_shown_ = CueStatus();
   state_status_shown_ = CueStatus();
+  stop_status_shown_ = CueStatus();
+  corridor_status_shown_ = CueStatus();
+  off_view_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
   // rviz's Reset (also at every backward jump of ROS time: a bag loop): a plan from a latched
   // publisher comes back only by subscribing again. A planner that publishes unlatched keeps its

@@ -443,6 +443,24 @@ TEST_F(OffViewTest, BadInputSaysWhyAndDrawsNothing)
   EXPECT_EQ(cyanPixels(grabUntil(none)), 0);
 }
 
+TEST_F(OffViewTest, ARvizResetKeepsTheLensOfALatchedCameraInfo)
+{
+  // The CameraInfo is published once, latched (projector_info_publisher does): after rviz's Reset
+  // (also at every backward jump of ROS time) it is not sent again, and the cue must come back.
+  ASSERT_TRUE(pathWithCue(kLeftwards, M_PI / 2, kOwnInfo));
+  ros::Publisher info = nh_.advertise<sensor_msgs::CameraInfo>(kOwnInfo, 1, true);
+  info.publish(info_);
+  EXPECT_TRUE(statusSays("edge arrow")) << status();
+  const std::size_t messages = path_->offViewSource().messages();
+  path_->reset();
+  EXPECT_TRUE(waitFor([&] { return path_->offViewTriangleCount() == 0 || !statusOf(path_, "Off-view cue").present ||
+                                   statusOf(path_, "Path").text.contains("No path"); }));
+  EXPECT_TRUE(waitFor([&] { return path_->offViewTriangleCount() > 0; }, 8.0)) << status();
+  EXPECT_TRUE(statusSays("edge arrow")) << status();
+  EXPECT_EQ(path_->offViewSource().messages(), messages) << "no new CameraInfo was needed";
+  EXPECT_GT(cyanPixels(grabUntil([&](const QImage& image) { return cyanPixels(image) > 100; })), 100);
+}
+
 namespace
 {
 class OffViewConfigTest : public RvizTest

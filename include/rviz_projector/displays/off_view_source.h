@@ -37,13 +37,15 @@ public:
   /// same topic again changes nothing.
   void subscribe(ros::NodeHandle& nh, const std::string& topic);
   void unsubscribe();
-  /// Forgets the CameraInfo and the cue's state (rviz's Reset, a new topic).
+  /// Forgets the CameraInfo and the cue's state (a new topic).
   void clear();
-  /// Forgets the cue's show/hide state only (a backward jump of ROS time, the group switched off).
+  /// Forgets the cue's show/hide state and the lit area (rviz's Reset, a backward jump of ROS time,
+  /// a property change), not the lens: a latched CameraInfo is not sent again.
   void resetCue()
   {
     cue_.reset();
     built_ = Key();
+    lit_revision_ = ~0ull;
   }
 
   /**
