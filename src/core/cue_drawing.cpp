@@ -40,6 +40,7 @@ void CueDrawing::build(const std::vector<Vec2>& path, const SpacedPath& spaced, 
       robot_arc = here.arc_length;
     }
   }
+  robot_arc_ = robot_arc;
   HorizonWindow window;
   if (settings.horizon)
   {

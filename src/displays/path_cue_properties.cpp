@@ -33,7 +33,7 @@ PathCueProperties::PathCueProperties(rviz::Display* display)
   const GoalCueParameters goal_defaults;
   robot_frame = new rviz::TfFrameProperty(
       "Robot frame", "base_link",
-      "The robot's tf frame: where the horizon, the stop zone and the corridor start, where the turn signal is drawn, and whether the robot stands "
+      "The robot's tf frame: where the horizon, the stop zone, the corridor and the off-view cue start (its heading: the off-view cue's turn in place), where the turn signal is drawn, and whether the robot stands "
       "still (pre-motion warning).",
       display, nullptr, false, SLOT(updateCues()), display);
 

@@ -98,6 +98,8 @@ PathCueInput PathCueSource::inputAt(const ros::Time& now, rviz::FrameManager& fr
     {
       input.robot_known = true;
       input.robot = Vec2{position.x, position.y};
+      const Ogre::Vector3 forward = orientation * Ogre::Vector3::UNIT_X;  // the robot's x axis on the floor
+      input.heading = std::atan2(forward.y, forward.x);
       stillness_.add(input.robot, input.time);
     }
     else

@@ -21,6 +21,7 @@
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
 #include "rviz_projector/displays/corridor_properties.h"
+#include "rviz_projector/displays/off_view_properties.h"
 #include "rviz_projector/displays/stop_zone_properties.h"
 
 namespace rviz_projector
@@ -60,7 +61,7 @@ void ProjectedPathDisplay::checkMarchingMode()
 bool ProjectedPathDisplay::cuesActive() const
 {
   return cue_settings_.horizon || cue_settings_.marching || cue_settings_.turn_signal || cue_settings_.stop_zone ||
-         cue_settings_.corridor || cue_source_.subscribed();
+         cue_settings_.corridor || cue_settings_.off_view || cue_source_.subscribed();
 }
 
 void ProjectedPathDisplay::updateCues()
@@ -70,6 +71,7 @@ void ProjectedPathDisplay::updateCues()
   cue_settings_.stop = stop_properties_->parameters();
   cue_settings_.corridor = corridor_properties_->enabled->getBool();
   cue_settings_.corridor_parameters = corridor_properties_->parameters();
+  cue_settings_.off_view = off_view_properties_->enabled->getBool();
   cue_source_.setParameters(cue_properties_->goalParameters());
   if (!stop_properties_->speedCoding(0.0).enabled)
   {
@@ -133,6 +135,47 @@ void ProjectedPathDisplay::updateCorridor()
   corridor_status_shown_ = CueStatus();
   deleteStatus("Corridor");
   updateCues();
+}
+
+void ProjectedPathDisplay::updateOffView()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  off_view_source_.subscribe(update_nh_, off_view_properties_->wantedTopic());
+  off_view_source_.resetCue();  // new parameters: judged afresh
+  off_view_status_shown_ = CueStatus();
+  deleteStatus("Off-view cue");
+  updateCues();
+}
+
+void ProjectedPathDisplay::buildOffView(const PathCueInput& input)
+{
+  off_view_next_.clear();
+  if (!cue_settings_.off_view)
+  {
+    return;
+  }
+  if (!input.goal.arrows)
+  {
+    // The arrows are not shown (the goal's state hides them): neither is what stands for them.
+    off_view_source_.resetCue();
+    showCueStatus("Off-view cue", CueStatus{CueStatus::Level::Ok, "Nothing drawn: the arrows are hidden"},
+                  off_view_status_shown_);
+    return;
+  }
+  OffViewInput robot;
+  robot.robot = input.robot;
+  robot.heading = input.heading;
+  robot.start = cue_next_.robotArc();
+  // The cue keeps clear of the arrows that are drawn: from the horizon's start with the horizon on.
+  robot.drawn_from = cue_settings_.horizon ? cue_next_.horizonStart() : 0.0;
+  const OffViewResult& cue =
+      off_view_source_.cueAt(*context_->getFrameManager(), last_msg_.get(), floor_points_, cue_next_.lengths(),
+                             input.robot_known, robot, off_view_properties_->parameters());
+  off_view_next_.assign(cue.triangles.begin(), cue.triangles.end());
+  showCueStatus("Off-view cue", off_view_source_.status(), off_view_status_shown_);
 }
 
 void ProjectedPathDisplay::takeCorridorFootprint()
@@ -232,6 +275,7 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
     spaced_phase_ = phase;
   }
   cue_next_.build(floor_points_, *spaced_, parameters, cue_settings_, input);
+  buildOffView(input);
   const auto same = [](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const Vec2& p, const Vec2& q) {
              return p.x == q.x && p.y == q.y;
@@ -244,11 +288,12 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
       same(cue_next_.stopZone().triangles(), cue_drawn_.stopZone().triangles()) &&
       cue_next_.stopZone().alpha() == cue_drawn_.stopZone().alpha() &&
       same(cue_next_.corridor().band(), cue_drawn_.corridor().band()) &&
-      same(cue_next_.corridor().edges(), cue_drawn_.corridor().edges()))
+      same(cue_next_.corridor().edges(), cue_drawn_.corridor().edges()) && same(off_view_next_, off_view_drawn_))
   {
     return;  // the projector already shows exactly this: no upload, no frame
   }
   std::swap(cue_next_, cue_drawn_);
+  off_view_next_.swap(off_view_drawn_);
   cue_colour_drawn_ = input.goal.colour;
   const double height = height_property_->getFloat();
   const float alpha = alpha_property_->getFloat();
@@ -270,6 +315,9 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
   corridor_colour.a = alpha * (band ? corridor_properties_->alpha->getFloat() : 1.0f);
   corridor_mesh_->setFlatTriangles(band ? cue_drawn_.corridor().band() : cue_drawn_.corridor().edges(), height,
                                    corridor_colour);
+  Ogre::ColourValue off_view_colour = off_view_properties_->color->getOgreColor();
+  off_view_colour.a = alpha * off_view_properties_->alpha->getFloat();
+  off_view_mesh_->setFlatTriangles(off_view_drawn_, height + kArrowLift, off_view_colour);
   ++mesh_builds_;
   ProjectionChangeNotifier::notify();
   context_->queueRender();

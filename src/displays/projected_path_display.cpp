@@ -23,6 +23,7 @@
 #include "rviz_projector/displays/projection_change_notifier.h"
 #include "rviz_projector/displays/ros_clock.h"
 #include "rviz_projector/displays/corridor_properties.h"
+#include "rviz_projector/displays/off_view_properties.h"
 #include "rviz_projector/displays/stop_zone_properties.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
@@ -121,6 +122,7 @@ ProjectedPathDisplay::ProjectedPathDisplay() : spaced_(&empty_)
   cue_properties_ = std::make_unique<PathCueProperties>(this);
   stop_properties_ = std::make_unique<StopZoneProperties>(this);
   corridor_properties_ = std::make_unique<CorridorProperties>(this);
+  off_view_properties_ = std::make_unique<OffViewProperties>(this);
   cue_settings_ = cue_properties_->settings();
   ProjectionAnimation::add(this);
 }
@@ -132,6 +134,7 @@ ProjectedPathDisplay::~ProjectedPathDisplay()
   cue_source_.unsubscribe();
   stop_source_.unsubscribe();
   corridor_source_.unsubscribe();
+  off_view_source_.unsubscribe();
 }
 
 void ProjectedPathDisplay::onInitialize()
@@ -150,17 +153,21 @@ void ProjectedPathDisplay::onInitialize()
   glyph_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   stop_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
   corridor_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
-  // Bottom to top where they overlap: corridor, stop zone, destination, arrows, glyph.
+  off_view_mesh_ = std::make_unique<FloorMesh>(scene_manager_, scene_node_);
+  // Bottom to top where they overlap: corridor, stop zone, destination, arrows, glyph, off-view cue
+  // (which keeps off the arrows drawn, but lies on the corridor or stop zone when they fill the lit area).
   corridor_mesh_->setLayer(1);
   stop_mesh_->setLayer(2);
   circle_mesh_->setLayer(3);
   arrow_mesh_->setLayer(4);
   glyph_mesh_->setLayer(5);
+  off_view_mesh_->setLayer(6);
   cue_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   spacer_.setParameters(spacingParameters());
   updateStateTopic();
   updateStopZone();
   updateCorridor();
+  updateOffView();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
 }
 
@@ -169,7 +176,8 @@ void ProjectedPathDisplay::onEnable()
   MFDClass::onEnable();
   resumeDraining();
   scene_node_->setVisible(true);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get(),
+                          off_view_mesh_.get()})
   {
     if (mesh)
     {
@@ -184,7 +192,8 @@ void ProjectedPathDisplay::onDisable()
   MFDClass::onDisable();
   pauseDraining();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
-  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get()})
+  for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get(),
+                          off_view_mesh_.get()})
   {
     if (mesh)
     {
@@ -212,13 +221,20 @@ void ProjectedPathDisplay::reset()
     glyph_mesh_->clear();
     stop_mesh_->clear();
     corridor_mesh_->clear();
+    off_view_mesh_->clear();
+    off_view_drawn_.clear();
     ProjectionChangeNotifier::notify();
   }
   cue_source_.clear();
   stop_source_.clear();
   corridor_source_.clear();
+  off_view_source_.resetCue();  // the lens stays: a latched CameraInfo does not come again
+  // rviz's Reset cleared every status: each is shown again when next worked out.
   robot_status_shown_ = CueStatus();
   state_status_shown_ = CueStatus();
+  stop_status_shown_ = CueStatus();
+  corridor_status_shown_ = CueStatus();
+  off_view_status_shown_ = CueStatus();
   setStatus(rviz::StatusProperty::Warn, "Path", "No path received yet");
   // rviz's Reset (also at every backward jump of ROS time: a bag loop): a plan from a latched
   // publisher comes back only by subscribing again. A planner that publishes unlatched keeps its
@@ -245,7 +261,7 @@ void ProjectedPathDisplay::load(const rviz::Config& config)
   check.choice(config.mapGetChild(style_property_->getName()), style_property_, {"Flat", "3D"}, "Flat");
   QString report = check.report();
   for (const QString& part : {cue_properties_->checkLoaded(config), stop_properties_->checkLoaded(config),
-                              corridor_properties_->checkLoaded(config)})
+                              corridor_properties_->checkLoaded(config), off_view_properties_->checkLoaded(config)})
   {
     if (!part.isEmpty())
     {
@@ -354,6 +370,7 @@ void ProjectedPathDisplay::drainQueue()
   {
     cue_source_.clear();
     stop_source_.clear();
+    off_view_source_.resetCue();
   }
   drain();
   if (tf_waiting_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - tf_wait_since_).count() > kTfWaitGrace)
@@ -363,7 +380,8 @@ void ProjectedPathDisplay::drainQueue()
   }
   const bool odometry = stop_source_.takeNews();
   const bool footprint = corridor_source_.takeNews();
-  if ((cue_source_.takeNews() || odometry || footprint) && arrow_mesh_ && isEnabled() && cuesActive())
+  const bool lens = off_view_source_.takeNews();
+  if ((cue_source_.takeNews() || odometry || footprint || lens) && arrow_mesh_ && isEnabled() && cuesActive())
   {
     drawCues(cueTime(), false);  // a new goal state shows at once, whatever the clock does
   }
@@ -393,6 +411,8 @@ void ProjectedPathDisplay::checkPathTimeout()
   glyph_mesh_->clear();
   stop_mesh_->clear();
   corridor_mesh_->clear();
+  off_view_mesh_->clear();
+  off_view_drawn_.clear();
   deleteStatus("Style");
   setStatus(rviz::StatusProperty::Warn, "Path",
             QString("No new path for %1 s (Path timeout %2 s): arrows cleared").arg(age, 0, 'f', 1).arg(timeout));
@@ -493,6 +513,8 @@ void ProjectedPathDisplay::redraw()
   glyph_mesh_->clear();
   stop_mesh_->clear();
   corridor_mesh_->clear();
+  off_view_mesh_->clear();
+  off_view_drawn_.clear();
   const double height = height_property_->getFloat();
   const float alpha = alpha_property_->getFloat();
   Ogre::ColourValue arrow_colour = arrow_color_property_->getOgreColor();
@@ -535,6 +557,11 @@ std::size_t ProjectedPathDisplay::glyphTriangleCount() const
 std::size_t ProjectedPathDisplay::corridorTriangleCount() const
 {
   return corridor_mesh_ ? corridor_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::offViewTriangleCount() const
+{
+  return off_view_mesh_ ? off_view_mesh_->triangleCount() : 0;
 }
 
 std::size_t ProjectedPathDisplay::stopZoneTriangleCount() const

@@ -76,29 +76,35 @@ void ProjectorLensSource::callback(const sensor_msgs::CameraInfo::ConstPtr& msg)
   }
   calibration_ = std::move(calibration);
   PinholeModel lens;
-  check_ = PinholeModel::fromCalibration(calibration_, lens);
+  check_ = projectorLens(calibration_, lens, distortion_);
   has_lens_ = check_.ok();
   narrow_view_.clear();
-  distortion_ = LensDistortion();
-  if (has_lens_ && LensDistortion::fromCalibration(calibration_, distortion_).ok() && !distortion_.none())
-  {
-    // Drawn through the distortion: the projector's pixels are K's (P is the rectified camera,
-    // which a projector does not have). fromCalibration checked K with the fold check.
-    PinholeModel raw_lens;
-    if (PinholeModel::rawFromCalibration(calibration_, raw_lens).ok())
-    {
-      lens = raw_lens;
-    }
-    else
-    {
-      distortion_ = LensDistortion();  // K unusable: P's pinhole, D not drawn (the warning says so)
-    }
-  }
   if (has_lens_)
   {
     lens_ = lens;
     narrow_view_ = narrowViewWarning(lens_);
   }
+}
+
+LensCheck projectorLens(const LensCalibration& calibration, PinholeModel& lens, LensDistortion& distortion)
+{
+  const LensCheck check = PinholeModel::fromCalibration(calibration, lens);
+  distortion = LensDistortion();
+  if (check.ok() && LensDistortion::fromCalibration(calibration, distortion).ok() && !distortion.none())
+  {
+    // Drawn through the distortion: the projector's pixels are K's (P is the rectified camera,
+    // which a projector does not have). fromCalibration checked K with the fold check.
+    PinholeModel raw_lens;
+    if (PinholeModel::rawFromCalibration(calibration, raw_lens).ok())
+    {
+      lens = raw_lens;
+    }
+    else
+    {
+      distortion = LensDistortion();  // K unusable: P's pinhole, D not drawn (the warning says so)
+    }
+  }
+  return check;
 }
 
 double ProjectorLensSource::secondsSinceInfo() const

@@ -2,7 +2,7 @@
 """projector_host as the robot runs it (issue 13): a real process under the suite's X server.
 
 - it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px), the
-  ProjectedPath's Stop zone and Corridor (issue 25) included;
+  ProjectedPath's Stop zone, Corridor and Off-view cue (issue 25) included;
 - a reload with a changed property changes the pixels; a broken reload (bad YAML, a plugin that
   is not installed, a property value of the wrong type, no ProjectorCamera) is refused with a
   message, keeps the old picture and the process;
@@ -42,19 +42,27 @@ MAGENTA = (255, 0, 255)
 CYAN = (0, 255, 255)
 ORANGE = (255, 140, 0)  # the Stop zone's bar in its default Color
 AMBER = (255, 200, 0)  # the Corridor's edges in their default Color
+SKY = (0, 200, 255)  # the Off-view cue in its default Color
+# A second ProjectedPath for the same-pixels test: a path leaving to the robot's right outside the lit
+# area (the robot faces +x), so its Off-view cue shows a turn-in-place glyph; drawn above the first.
+OFF_VIEW_DISPLAY = ("    - Class: rviz_projector/ProjectedPath\n      Enabled: true\n      Name: Off-view\n"
+                    "      Topic: /host_test/off_view_plan\n      Height above floor: 0.02\n"
+                    "      Off-view cue:\n        Value: true\n        Projector info topic: /projector/camera_info\n"
+                    "      Value: true\n")
 
 
 def xrandr(*args):
     subprocess.run(["xrandr"] + list(args), check=True, timeout=10)
 
 
-def make_path():
+def make_path(dx=0.05, dy=0.0):
     path = Path()
     path.header.frame_id = "map"
     for i in range(41):
         pose = PoseStamped()
         pose.header.frame_id = "map"
-        pose.pose.position.x = 0.3 + 0.05 * i
+        pose.pose.position.x = 0.3 + dx * i
+        pose.pose.position.y = dy * i
         pose.pose.orientation.w = 1.0
         path.poses.append(pose)
     return path
@@ -65,6 +73,7 @@ class HostTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("host_test", anonymous=True)
         cls.plan = rospy.Publisher("/host_test/plan", Path, queue_size=1, latch=True)
+        cls.off_view_plan = rospy.Publisher("/host_test/off_view_plan", Path, queue_size=1, latch=True)
         cls.odom = rospy.Publisher("/host_test/odom", Odometry, queue_size=1)
         cls.diagnostics = []
         cls.diag_lock = threading.Lock()
@@ -93,6 +102,9 @@ class HostTest(unittest.TestCase):
         path = make_path()
         path.header.stamp = rospy.Time.now()
         self.plan.publish(path)
+        right = make_path(dx=0.0, dy=-0.05)
+        right.header.stamp = path.header.stamp
+        self.off_view_plan.publish(right)
 
     def config_copy(self, name="host.rviz", replace=None):
         with open(os.path.join(CONFIGS, name)) as f:
@@ -121,8 +133,8 @@ class HostTest(unittest.TestCase):
         return windows[0] if windows else None
 
     def wait_colour(self, pid, colour, minimum=200, timeout=20.0, also=None):
-        """The output window once at least `minimum` pixels of `colour` show (and `also`, a pair
-        (colour, minimum), holds too) (None on timeout)."""
+        """The output window once at least `minimum` pixels of `colour` show (and `also`, pairs
+        (colour, minimum), hold too) (None on timeout)."""
         def ready():
             w = self.output_window(pid, timeout=0.5)
             if not w:
@@ -136,7 +148,7 @@ class HostTest(unittest.TestCase):
                 odom.twist.twist.linear.x = self.odometry_speed
                 self.odom.publish(odom)
             pixels = grab_window(self.x, w)
-            if also is not None and pixels.count_colour(also[0]) < also[1]:
+            if any(pixels.count_colour(c) < n for c, n in (also or [])):
                 return None
             return (w, pixels) if pixels.count_colour(colour) >= minimum else None
         return wait_for(ready, timeout, 0.2)
@@ -156,29 +168,33 @@ class HostTest(unittest.TestCase):
     # ---- tests -----------------------------------------------------------------------------
     def test_same_pixels_as_rviz(self):
         # With the Stop zone on (its bar and fill are lit pixels too), the robot at 0.8 m/s, and the
-        # Corridor's edges (a round robot, the default).
+        # Corridor's edges (a round robot, the default); a second path with the Off-view cue on.
         config = self.config_copy(replace={"      Arrow color: 255; 0; 255\n": "      Arrow color: 255; 0; 255\n"
                                            "      Stop zone:\n        Value: true\n"
                                            "        Odometry topic: /host_test/odom\n"
-                                           "      Corridor:\n        Value: true\n"})
+                                           "      Corridor:\n        Value: true\n",
+                                           "    - Class: rviz_projector/ProjectorCamera\n":
+                                           OFF_VIEW_DISPLAY + "    - Class: rviz_projector/ProjectorCamera\n"})
         self.odometry_speed = 0.8
         rviz = RvizProcess(config, label="host_same_pixels_rviz")
         self.procs.append(rviz)
-        shown = self.wait_colour(rviz.pid, MAGENTA, timeout=START_TIMEOUT, also=(ORANGE, 200))
-        self.assertIsNotNone(shown, "rviz never showed the arrows: " + rviz.log_tail())
+        shown = self.wait_colour(rviz.pid, MAGENTA, timeout=START_TIMEOUT, also=[(ORANGE, 200), (SKY, 200)])
+        self.assertIsNotNone(shown, "rviz never showed the arrows, the stop zone and the off-view cue: "
+                             + rviz.log_tail())
         rviz_window, rviz_pixels = shown
         rviz.stop()
         self.procs.remove(rviz)
         self.assertTrue(wait_for(lambda: not self.x.mapped_output_windows(), 10.0), "rviz's window stayed")
         host = self.start_host(config)
-        shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT, also=(ORANGE, 200))
-        self.assertIsNotNone(shown, "projector_host never showed the arrows and the stop zone: " + host.log_tail())
+        shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT, also=[(ORANGE, 200), (SKY, 200)])
+        self.assertIsNotNone(shown, "projector_host never showed the arrows, the stop zone and the off-view cue: " + host.log_tail())
         host_window, host_pixels = shown
         self.assertEqual((rviz_window["x"], rviz_window["y"], rviz_window["width"], rviz_window["height"]),
                          (host_window["x"], host_window["y"], host_window["width"], host_window["height"]),
                          "the host's output window is not where rviz's was")
         for who, pixels in (("rviz", rviz_pixels), ("projector_host", host_pixels)):
             self.assertGreater(pixels.count_colour(AMBER), 200, who + " shows no corridor")
+            self.assertGreater(pixels.count_colour(SKY), 200, who + " shows no off-view cue")
         a = set(rviz_pixels.lit())
         b = set(host_pixels.lit())
         self.assertGreater(len(a), 1000, "too little lit in rviz's projector window to compare")

@@ -37,9 +37,12 @@ struct PathCueSettings
   /// The robot's footprint for the corridor: a radius (> 0), or else the polygon (robot frame).
   double corridor_radius = 0.3;
   std::vector<Vec2> corridor_footprint;
+  /// The off-view cue (OffViewCue): drawn by the display from CueDrawing's robotArc() and
+  /// horizonStart(); here only so that the robot is looked up for it.
+  bool off_view = false;
 
-  /// Whether any cue needs the robot's position (horizon, turn signal, stop zone, corridor).
-  bool needsRobot() const { return horizon || turn_signal || stop_zone || corridor; }
+  /// Whether any cue needs the robot's position (horizon, turn signal, stop zone, corridor, off-view).
+  bool needsRobot() const { return horizon || turn_signal || stop_zone || corridor || off_view; }
 };
 
 /// The inputs that change over time.
@@ -48,6 +51,7 @@ struct PathCueInput
   double time = 0.0;          ///< seconds (ROS time)
   bool robot_known = false;   ///< the robot's position could be looked up
   Vec2 robot;                 ///< the robot's floor position in the path's (fixed) frame
+  double heading = 0.0;       ///< the robot's heading (its x axis on the floor), radians
   GoalCueFrame goal;          ///< from GoalCueTimeline (default: draw everything, Normal colours)
   SpeedEstimate speed;        ///< the robot's filtered speed (default: standing) for the stop zone
 };
@@ -99,6 +103,10 @@ public:
   bool animating() const { return animating_; }
   /// Whether the horizon is limited (for the display's status): where it starts, arc length.
   double horizonStart() const { return horizon_start_; }
+  /// The robot's place on the path (arc length; 0 without a known robot), as the horizon uses it.
+  double robotArc() const { return robot_arc_; }
+  /// Arc length at each path point (of the last build).
+  const std::vector<double>& lengths() const { return lengths_; }
 
 private:
   std::vector<double> lengths_;
@@ -125,5 +133,6 @@ private:
     bool operator==(const CorridorKey& o) const;
   } corridor_key_;
   double horizon_start_ = 0.0;
+  double robot_arc_ = 0.0;
 };
 }  // namespace rviz_projector

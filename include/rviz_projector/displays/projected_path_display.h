@@ -22,6 +22,7 @@
 #include "rviz_projector/displays/private_callback_queue.h"
 #include "rviz_projector/displays/projection_animation.h"
 #include "rviz_projector/displays/corridor_source.h"
+#include "rviz_projector/displays/off_view_source.h"
 #include "rviz_projector/displays/stop_zone_source.h"
 #endif
 
@@ -37,6 +38,7 @@ namespace rviz_projector
 class FloorMesh;
 struct PathCueProperties;
 struct CorridorProperties;
+struct OffViewProperties;
 struct StopZoneProperties;
 
 /// The base of ProjectedPathDisplay: rviz's MessageFilterDisplay, destroyed before the queue.
@@ -45,7 +47,7 @@ class ProjectedPathBase : protected PrivateCallbackQueue, public rviz::MessageFi
 };
 
 /// Cues (issue 15: horizon, marching, robot state, pre-motion warning, turn signal; issue 25: stop
-/// zone, corridor) are computed by
+/// zone, corridor, off-view cue) are computed by
 /// the core's CueDrawing from PathCueSource's inputs at the time of each frame (AnimatedDrawing).
 class ProjectedPathDisplay : public ProjectedPathBase, public AnimatedDrawing
 {
@@ -79,6 +81,10 @@ public:
   std::size_t corridorTriangleCount() const;
   /// Footprint messages the corridor took.
   std::size_t footprintMessages() const { return corridor_source_.messages(); }
+  /// Triangles of the off-view cue drawn now.
+  std::size_t offViewTriangleCount() const;
+  /// The off-view cue's source (its lit area, CameraInfo messages taken).
+  const OffViewSource& offViewSource() const { return off_view_source_; }
 
   /// Brings the cues up to `now` (ROS time); called by every projector at each frame tick and by
   /// rviz's update. Redraws only when the picture changes. No cue on: nothing.
@@ -112,6 +118,8 @@ private Q_SLOTS:
   void updateStopZone();
   /// A Corridor property changed: (un)subscribes the Footprint topic, then updateCues().
   void updateCorridor();
+  /// An Off-view cue property changed: (un)subscribes the Projector info topic, then updateCues().
+  void updateOffView();
 
 private:
   /// Arrows sit this much above the circle so that where they meet (Paper mode) the arrow wins.
@@ -195,5 +203,14 @@ private:
   std::unique_ptr<FloorMesh> corridor_mesh_;
   /// The footprint for this frame into cue_settings_, its status shown.
   void takeCorridorFootprint();
+
+  std::unique_ptr<OffViewProperties> off_view_properties_;
+  OffViewSource off_view_source_;
+  CueStatus off_view_status_shown_;
+  std::vector<Vec2> off_view_next_;   ///< the cue's triangles for this frame (empty: none)
+  std::vector<Vec2> off_view_drawn_;  ///< on off_view_mesh_ (swapped with off_view_next_)
+  std::unique_ptr<FloorMesh> off_view_mesh_;
+  /// The off-view cue for this frame into off_view_next_, its status shown (group off: nothing).
+  void buildOffView(const PathCueInput& input);
 };
 }  // namespace rviz_projector

@@ -46,6 +46,11 @@ struct LensEvent
   bool any() const { return lens || frame; }
 };
 
+/// The lens a projector draws through, from its CameraInfo's values: P's pinhole and no distortion,
+/// or with a D that can be drawn K's raw pinhole and that D. An error leaves `lens` unusable. Shared
+/// by the ProjectorCamera and ProjectedPath's off-view cue (the same lit area).
+LensCheck projectorLens(const LensCalibration& calibration, PinholeModel& lens, LensDistortion& distortion);
+
 class ProjectorLensSource
 {
 public:
