@@ -495,9 +495,18 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
     };
   };
 
+  const bool turning = std::abs(turn) > parameters.turn_angle;
+  if (!turning && end >= total && inside(lit, points.back()))
+  {
+    // The destination's circle is lit: it shows where the robot goes (the last stretch before it
+    // may lie between the robot and the lit area, with no arrows to show).
+    shown_ = false;
+    result_.reason = "destination visible";
+    return result_;
+  }
   bool placed = false;
   Vec2 shift;  // of the placement found
-  if (std::abs(turn) > parameters.turn_angle)
+  if (turning)
   {
     result_.kind = OffViewKind::TurnInPlace;
     result_.turn = turn > 0.0 ? TurnSide::Left : TurnSide::Right;  // wrapToPi: exactly behind is +pi

@@ -289,6 +289,22 @@ TEST(OffViewCue, DestinationInsideTheLitAreaNeedsNoDestinationCue)
   EXPECT_NEAR(r.visible_fraction, 1.0 - 0.3 / 0.7, 1e-9);
 }
 
+TEST(OffViewCue, ALitDestinationIsEnoughEvenWhenLittleOfThePathIs)
+{
+  // Path (0,0) -> (0.35,0): only its last 5 cm are lit (0.05 / 0.35 = 14 % < 25 %), but the
+  // destination (0.35, 0) is inside the lit area: its circle shows where the robot goes -> None.
+  Case c = makeCase({{0, 0}, {0.35, 0}});
+  OffViewCue cue;
+  const OffViewResult& r = cue.build(c.points, c.lengths, c.input, OffViewParameters());
+  EXPECT_EQ(r.kind, OffViewKind::None);
+  EXPECT_EQ(r.reason, "destination visible");
+  EXPECT_TRUE(r.triangles.empty());
+  EXPECT_NEAR(r.visible_fraction, 0.05 / 0.35, 1e-9);
+  // The same destination 1 cm before the lit area: a cue.
+  Case out = makeCase({{0, 0}, {0.29, 0}});
+  EXPECT_NE(cue.build(out.points, out.lengths, out.input, OffViewParameters()).kind, OffViewKind::None);
+}
+
 TEST(OffViewCue, HysteresisKeepsTheCueBetweenTheThresholds)
 {
   // Straight path along y = 0; lit x in [a, a + 1], y in [-0.4, 0.4]: inside the window [0, 1.5] is

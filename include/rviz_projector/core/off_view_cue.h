@@ -101,7 +101,9 @@ struct OffViewResult
  *    visible_fraction = length of the window's path inside the lit polygon / window length, exact
  *    (the path's crossings with the polygon's edges). None while the path is visible (hysteresis
  *    above).
- * 3. TurnInPlace when |wrap(headingAt(start, chord) - heading)| > turn_angle: appendTurnGlyph
+ * 3. None ("destination visible") when the robot does not turn in place (below), the window reaches
+ *    the destination and the destination is inside the lit polygon: its circle shows where the robot
+ *    goes. Otherwise, TurnInPlace when |wrap(headingAt(start, chord) - heading)| > turn_angle: appendTurnGlyph
  *    centred on the lit area's centroid (pulled into the area by `margin`), bending to the side of the
  *    difference's sign (> 0: Left; exactly behind counts as Left).
  * 4. Destination when the path left is <= final_approach and its last point is outside the lit
