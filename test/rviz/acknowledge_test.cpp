@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <string>
@@ -35,6 +36,15 @@ using namespace rviz_projector_test;
 
 namespace
 {
+/// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png (the README's picture).
+void saveShot(const QImage& image, const char* name)
+{
+  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
+  {
+    image.save(QString("%1/%2.png").arg(folder, name));
+  }
+}
+
 const QRgb kArc = qRgb(0, 200, 255);  // the Color property's default
 constexpr double kLaserZ = 0.3;        // test_laser at (0, 0, 0.3) of map, yaw 0
 constexpr double kMargin = 0.1;        // the mask's Margin (default)
@@ -246,6 +256,7 @@ TEST_F(AcknowledgeTest, SideArrowOnThePathsSide)
   };
   const QImage frame = imagePart(grabWhen([&](const QImage& image) { return shown(imagePart(image)); }));
   EXPECT_TRUE(shown(frame));
+  saveShot(frame, "acknowledge");
   EXPECT_FALSE(colourAt(frame, {arc.mean.x, arc.mean.y + outer + 2.0 * kWidth}, kArc)) << "not on the far side";
 }
 
