@@ -216,6 +216,10 @@ TEST_F(AcknowledgeTest, ArcOnTheRobotsSideNeverOnTheFeet)
 {
   switchOn();
   const std::vector<Vec2> points = person({1.5, 0.45});
+  // Within one frame of the scan: its arc was uploaded in the same call as its mask (no frame
+  // between them shows the mask without the arc).
+  EXPECT_EQ(mask_->columns(), 17u);
+  EXPECT_GT(mask_->acknowledgeTriangles(), 0u);
   const ArcOracle arc(points, {0.0, 0.0});
   const QImage frame = imagePart(grabWhen([&](const QImage& image) { return arcShown(imagePart(image), arc); }));
   EXPECT_TRUE(arcShown(frame, arc)) << "the arc at " << arc.at(0.0).x << ", " << arc.at(0.0).y;
@@ -387,6 +391,39 @@ TEST_F(AcknowledgeConfigTest, PropertiesAreSavedAndLoaded)
       expectGroupSavedAndLoaded("Acknowledge", values, "rviz_projector/ProjectionMask");
   EXPECT_EQ(shown.at("Path topic"), "/robot/plan");
   EXPECT_EQ(shown.at("Min points"), "4");
+}
+
+TEST_F(AcknowledgeConfigTest, UnusableValuesAreReplacedAndReported)
+{
+  rviz::Config config;
+  rviz::YamlConfigReader reader;
+  reader.readString(config, R"(
+Displays:
+  - Class: rviz_projector/ProjectionMask
+    Name: Bad acknowledge
+    Enabled: true
+    Topic: /test/scan
+    Acknowledge:
+      Value: true
+      Range: -3
+      Hold: .nan
+      Line width: abc
+      Min points: 0
+)");
+  ASSERT_FALSE(reader.error());
+  rviz_->manager()->load(config);
+  ASSERT_EQ(rviz_->manager()->getRootDisplayGroup()->numDisplays(), 1);
+  rviz::Display* d = rviz_->manager()->getRootDisplayGroup()->getDisplayAt(0);
+  rviz::Property* group = d->subProp("Acknowledge");
+  EXPECT_TRUE(group->getValue().toBool());
+  EXPECT_GE(group->subProp("Range")->getValue().toDouble(), 0.0);
+  EXPECT_GE(group->subProp("Min points")->getValue().toInt(), 1);
+  const Status s = statusOf(d, "Config");
+  ASSERT_TRUE(s.present);
+  for (const char* name : {"Range: '-3'", "Hold", "Line width: 'abc'", "Min points: '0'"})
+  {
+    EXPECT_NE(s.text.indexOf(name), -1) << name << " missing in: " << s.text.toStdString();
+  }
 }
 
 TEST_F(AcknowledgeConfigTest, AConfigWithoutTheGroupLoadsWithItOff)
