@@ -43,6 +43,8 @@ constexpr std::size_t kMaxCloudColumns = 20000;
 constexpr std::size_t kMaxScanColumns = 20000;
 /// The Acknowledge arcs' height above the floor: over the path's arrows (1 cm by default).
 constexpr double kAcknowledgeHeight = 0.015;
+/// Seconds between two redraws of a fading arc.
+constexpr double kFadeStep = 1.0 / 60.0;
 
 /// The cloud's cell side: Margin (so a column widens by at most half a margin), at least 5 cm.
 double cloudCell(double margin)
@@ -401,9 +403,14 @@ void ProjectionMaskDisplay::drainQueue()
   drain();
   tryPendingCloud();
   releaseStale();
-  if (ack_.takeNews() || ack_.fading())
+  // A new path; or an arc fading (once its person left the scan), redrawn at most every
+  // kFadeStep of ROS time (the drain runs every 5 ms, projectors show at most 60 frames/s).
+  const bool news = ack_.takeNews();
+  const double now = RosClock::shared().policy().rosNow();
+  if (news || (ack_.fading() && !(std::abs(now - ack_faded_at_) < kFadeStep)))
   {
-    redrawAcknowledge();  // a new path, or an arc fading (once its person left the scan)
+    ack_faded_at_ = now;
+    redrawAcknowledge();
   }
 }
 

@@ -188,7 +188,9 @@ protected:
   bool colourAt(const QImage& image, const Vec2& floor, QRgb colour) const
   {
     const Vec2 px = windowPixel(floor);
-    return sameColour(image.pixel(int(std::lround(px.x)), int(std::lround(px.y))), colour, 30);
+    const QPoint p(int(std::lround(px.x)), int(std::lround(px.y)));
+    EXPECT_TRUE(image.rect().contains(p)) << "the test judges a floor point out of view: " << floor.x << ", " << floor.y;
+    return image.rect().contains(p) && sameColour(image.pixel(p), colour, 30);
   }
 
   /// Whether the arc's middle line shows in `image` at the oracle's places: towards the robot and
@@ -215,7 +217,7 @@ protected:
 TEST_F(AcknowledgeTest, ArcOnTheRobotsSideNeverOnTheFeet)
 {
   switchOn();
-  const std::vector<Vec2> points = person({1.5, 0.45});
+  const std::vector<Vec2> points = person({1.1, 0.3});
   // Within one frame of the scan: its arc was uploaded in the same call as its mask (no frame
   // between them shows the mask without the arc).
   EXPECT_EQ(mask_->columns(), 17u);
@@ -248,20 +250,25 @@ TEST_F(AcknowledgeTest, ArcOnTheRobotsSideNeverOnTheFeet)
 TEST_F(AcknowledgeTest, SideArrowOnThePathsSide)
 {
   group_->subProp("Side arrow")->setValue(true);
-  switchOn();
-  const std::vector<Vec2> points = person({1.5, 0.45});
-  const ArcOracle arc(points, {0.0, 0.0});
-  // The arrow's centre line: beside the mean towards the path (-y), 2 line widths beyond the arc's
-  // outer radius; it runs along +x. Its middle, and a point 5 cm behind the middle, on the shaft.
-  const double outer = arc.middle + 0.5 * kWidth;
-  const Vec2 shaft{arc.mean.x, arc.mean.y - outer - 2.0 * kWidth};
-  const auto shown = [&](const QImage& image) {
-    return colourAt(image, shaft, kArc) && colourAt(image, {shaft.x - 0.05, shaft.y}, kArc);
+  // The path runs along +x 0.7 m to the right of the person (y = -0.7): the arrow is between them.
+  switchOn({{0.0, -0.7, 0.0}, {3.0, -0.7, 0.0}});
+  const ArcOracle arc(person({1.3, 0.0}), {0.0, 0.0});
+  // The arrow's centre line: beside the mean towards the path, 2 line widths beyond the arc's outer
+  // radius, running along +x. Its middle and a point 5 cm behind it are on its shaft; the same place
+  // mirrored to the person's other side has nothing.
+  const double beside = arc.middle + 0.5 * kWidth + 2.0 * kWidth;
+  const auto shownOn = [&](const QImage& image, double sign) {
+    const Vec2 shaft{arc.mean.x, arc.mean.y + sign * beside};
+    return colourAt(image, shaft, kArc) && colourAt(image, {shaft.x - 0.05, shaft.y}, kArc) &&
+           colourAt(image, {shaft.x, arc.mean.y - sign * beside}, kBlack);
   };
-  const QImage frame = imagePart(grabWhen([&](const QImage& image) { return shown(imagePart(image)); }));
-  EXPECT_TRUE(shown(frame));
+  QImage frame = imagePart(grabWhen([&](const QImage& image) { return shownOn(imagePart(image), -1.0); }));
+  EXPECT_TRUE(shownOn(frame, -1.0)) << "the path passes on the person's right";
   saveShot(frame, "acknowledge");
-  EXPECT_FALSE(colourAt(frame, {arc.mean.x, arc.mean.y + outer + 2.0 * kWidth}, kArc)) << "not on the far side";
+  // The path moved to the person's left (y = +0.7): the arrow moves with it.
+  switchOn({{0.0, 0.7, 0.0}, {3.0, 0.7, 0.0}});
+  frame = imagePart(grabWhen([&](const QImage& image) { return shownOn(imagePart(image), 1.0); }));
+  EXPECT_TRUE(shownOn(frame, 1.0)) << "the path passes on the person's left";
 }
 
 TEST_F(AcknowledgeTest, NoneOutOfRangeOrWithTheGroupOff)

@@ -127,5 +127,6 @@ private:
   std::unique_ptr<FloorMesh> ack_mesh_;
   QString ack_status_;  ///< the status shown (set again only when it changes)
   bool ack_drawn_ = false;
+  double ack_faded_at_ = 0.0;  ///< ROS time of the last redraw of a fading arc
 };
 }  // namespace rviz_projector
