@@ -8,6 +8,7 @@
 #include <rviz/frame_manager.h>
 
 #include "rviz_projector/core/rigid_transform.h"
+#include "rviz_projector/displays/ros_clock.h"
 #include "rviz_projector/ros/ros_conversions.h"
 
 namespace rviz_projector
@@ -22,6 +23,17 @@ RigidTransform fromOgre(const Ogre::Vector3& p, const Ogre::Quaternion& q)
 CueStatus nobody(CueStatus::Level level, const std::string& why)
 {
   return CueStatus{level, why + ": nobody is acknowledged"};
+}
+
+/// tf missing: an error, but a warning saying why right after a backward jump of ROS time (rviz's
+/// tf buffer is empty until a bag replays the transforms).
+CueStatus noTransform(const std::string& why)
+{
+  if (RosClock::shared().policy().justStartedOrJumpedBack())
+  {
+    return nobody(CueStatus::Level::Warn, kWaitingForTfAfterJump + why);
+  }
+  return nobody(CueStatus::Level::Error, why);
 }
 }  // namespace
 
@@ -101,7 +113,7 @@ bool AcknowledgeSource::pathPoints(rviz::FrameManager& frames, CueStatus& status
   Ogre::Quaternion orientation;
   if (!frames.getTransform(path_->header.frame_id, ros::Time(), position, orientation))
   {
-    status = nobody(CueStatus::Level::Error, "No transform from the path's frame '" + path_->header.frame_id + "'");
+    status = noTransform("No transform from the path's frame '" + path_->header.frame_id + "'");
     return false;
   }
   const std::size_t dropped = pathToFloorPoints(*path_, fromOgre(position, orientation), path_points_);
@@ -136,12 +148,12 @@ const AcknowledgeFrame& AcknowledgeSource::build(double now, rviz::FrameManager&
   Ogre::Quaternion orientation;
   if (robot_frame.empty() || !frames.getTransform(robot_frame, ros::Time(), position, orientation))
   {
-    frame_.status = nobody(CueStatus::Level::Error, "No transform from the Robot frame '" + robot_frame + "'");
+    frame_.status = noTransform("No transform from the Robot frame '" + robot_frame + "'");
     return frame_;
   }
   if (!scan_seen_ && tracker_.tracks().empty())
   {
-    frame_.status = nobody(CueStatus::Level::Warn, "No scan");
+    frame_.status = nobody(CueStatus::Level::Warn, "No scan received yet");
     return frame_;
   }
   const Vec2 robot{position.x, position.y};
