@@ -59,45 +59,42 @@ Vec2 nearestOnSegment(const Vec2& a, const Vec2& b, const Vec2& p)
   return a + ab * t;
 }
 
-/// The nearest point to `p` of the path from the place nearest the robot onward.
-AheadPoint nearestAhead(const std::vector<Vec2>& path, const Vec2& robot, const Vec2& p)
+double squared(const Vec2& a)
 {
-  // The robot's place: the first segment (and its point) nearest the robot.
-  std::size_t start = 0;
-  Vec2 from = path.front();
-  double best = distance(robot, from);
-  for (std::size_t i = 0; i + 1 < path.size(); ++i)
+  return dot(a, a);
+}
+
+/// The nearest point to `p` of the path from `start` onward (squared distances in the loop; the
+/// direction only for the best segment).
+AheadPoint nearestAhead(const std::vector<Vec2>& path, const PathAheadStart& start, const Vec2& p)
+{
+  Vec2 best_point = start.point;
+  double best = squared(p - start.point);
+  std::size_t best_segment = path.size();  // none yet: a single point, or only zero-length segments
+  for (std::size_t i = start.segment; i + 1 < path.size(); ++i)
   {
-    const Vec2 q = nearestOnSegment(path[i], path[i + 1], robot);
-    const double d = distance(robot, q);
-    if (d < best - 1e-9)
-    {
-      best = d;
-      start = i;
-      from = q;
-    }
-  }
-  AheadPoint out;
-  out.point = from;
-  out.distance = distance(p, from);
-  for (std::size_t i = start; i + 1 < path.size(); ++i)
-  {
-    const Vec2 a = i == start ? from : path[i];
-    const Vec2 b = path[i + 1];
-    const double len = distance(path[i], b);
-    if (len <= 0.0)
+    const Vec2 a = i == start.segment ? start.point : path[i];
+    const Vec2& b = path[i + 1];
+    if (path[i].x == b.x && path[i].y == b.y)
     {
       continue;
     }
     const Vec2 q = nearestOnSegment(a, b, p);
-    const double d = distance(p, q);
-    const Vec2 dir = (b - path[i]) * (1.0 / len);
-    if (d < out.distance - 1e-12 || (out.direction.x == 0.0 && out.direction.y == 0.0 && d <= out.distance + 1e-12))
+    const double d = squared(p - q);
+    if (d < best || (best_segment == path.size() && d <= best))
     {
-      out.distance = d;
-      out.point = q;
-      out.direction = dir;
+      best = d;
+      best_point = q;
+      best_segment = i;
     }
+  }
+  AheadPoint out;
+  out.point = best_point;
+  out.distance = std::sqrt(best);
+  if (best_segment < path.size())
+  {
+    const Vec2 along = path[best_segment + 1] - path[best_segment];
+    out.direction = along * (1.0 / norm(along));
   }
   return out;
 }
@@ -128,32 +125,71 @@ void sideArrow(const Vec2& person, double radius, const Vec2& direction, int sid
 }
 }  // namespace
 
+PathAheadStart locatePathAhead(const std::vector<Vec2>& path, const Vec2& robot)
+{
+  PathAheadStart start;
+  if (path.empty())
+  {
+    start.problem = "no path";
+    return start;
+  }
+  for (const Vec2& q : path)
+  {
+    if (!sane(q))
+    {
+      start.problem = "the path has NaN/Inf or too distant points";
+      return start;
+    }
+  }
+  if (!sane(robot))
+  {
+    start.problem = "the person's or the robot's place is NaN/Inf or too far";
+    return start;
+  }
+  // The first segment (and its point) nearest the robot.
+  start.point = path.front();
+  double best = squared(robot - start.point);
+  for (std::size_t i = 0; i + 1 < path.size(); ++i)
+  {
+    const Vec2 q = nearestOnSegment(path[i], path[i + 1], robot);
+    const double d = squared(robot - q);
+    if (d < best)
+    {
+      best = d;
+      start.segment = i;
+      start.point = q;
+    }
+  }
+  start.valid = true;
+  return start;
+}
+
 AcknowledgeResult acknowledgeArc(const Vec2& person, double feet_radius, const Vec2& robot,
                                  const std::vector<Vec2>& path, const AcknowledgeParameters& parameters,
                                  std::vector<Vec2>& triangles)
+{
+  return acknowledgeArc(person, feet_radius, robot, path, locatePathAhead(path, robot), parameters, triangles);
+}
+
+AcknowledgeResult acknowledgeArc(const Vec2& person, double feet_radius, const Vec2& robot,
+                                 const std::vector<Vec2>& path, const PathAheadStart& start,
+                                 const AcknowledgeParameters& parameters, std::vector<Vec2>& triangles)
 {
   const AcknowledgeParameters& p = parameters;
   if (!sane(person) || !sane(robot) || !sane(feet_radius) || feet_radius < 0.0)
   {
     return refused("the person's or the robot's place is NaN/Inf or too far");
   }
-  if (path.empty())
+  if (!start.valid || start.segment >= path.size())
   {
-    return refused("no path");
-  }
-  for (const Vec2& q : path)
-  {
-    if (!sane(q))
-    {
-      return refused("the path has NaN/Inf or too distant points");
-    }
+    return refused(start.problem.empty() ? "no path" : start.problem.c_str());
   }
   if (!sane(p.range) || !sane(p.distance) || !sane(p.line_width) || !std::isfinite(p.arc_angle) ||
       !(p.line_width > 0.0) || !(p.arc_angle > 0.0) || p.distance < 0.0 || p.range < 0.0)
   {
     return refused("unusable Range, Distance, Arc angle or Line width");
   }
-  const AheadPoint ahead = nearestAhead(path, robot, person);
+  const AheadPoint ahead = nearestAhead(path, start, person);
   AcknowledgeResult r;
   r.path_distance = ahead.distance;
   r.closest = ahead.point;

@@ -157,6 +157,7 @@ const AcknowledgeFrame& AcknowledgeSource::build(double now, rviz::FrameManager&
     return frame_;
   }
   const Vec2 robot{position.x, position.y};
+  const PathAheadStart start = locatePathAhead(path_points_, robot);  // once for everyone
   std::string refusal;
   for (const PersonTrack& track : tracker_.tracks())
   {
@@ -167,7 +168,7 @@ const AcknowledgeFrame& AcknowledgeSource::build(double now, rviz::FrameManager&
     }
     const std::size_t before = frame_.triangles.size();
     const AcknowledgeResult r =
-        acknowledgeArc(track.position, track.radius + feet_margin, robot, path_points_, arc, frame_.triangles);
+        acknowledgeArc(track.position, track.radius + feet_margin, robot, path_points_, start, arc, frame_.triangles);
     if (r.drawn)
     {
       ++frame_.acknowledged;

@@ -3,6 +3,7 @@
 // them the path passes. Plain geometry (no ROS, no OGRE).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -57,4 +58,21 @@ struct AcknowledgeResult
 AcknowledgeResult acknowledgeArc(const Vec2& person, double feet_radius, const Vec2& robot,
                                  const std::vector<Vec2>& path, const AcknowledgeParameters& parameters,
                                  std::vector<Vec2>& triangles);
+
+/// Where the path ahead starts: the point of `path` nearest the robot and its segment (the first
+/// of equally near ones). Not valid (with the problem) for a path of no point, a path with NaN/Inf
+/// or points beyond kAcknowledgeMaxMetres, or a robot place like that. One per scan, for everyone.
+struct PathAheadStart
+{
+  bool valid = false;
+  std::string problem;
+  std::size_t segment = 0;
+  Vec2 point;
+};
+PathAheadStart locatePathAhead(const std::vector<Vec2>& path, const Vec2& robot);
+
+/// acknowledgeArc with the path ahead's start already located (locatePathAhead(path, robot)).
+AcknowledgeResult acknowledgeArc(const Vec2& person, double feet_radius, const Vec2& robot,
+                                 const std::vector<Vec2>& path, const PathAheadStart& start,
+                                 const AcknowledgeParameters& parameters, std::vector<Vec2>& triangles);
 }  // namespace rviz_projector
