@@ -15,6 +15,7 @@ find_package(benchmark QUIET)
 if(benchmark_FOUND)
   #catkin_lint: ignore uninstalled_target
   add_executable(${PROJECT_NAME}_microbench
+    bench/micro/acknowledge_benchmarks.cpp
     bench/micro/bench_paths.cpp
     bench/micro/calibration_benchmarks.cpp
     bench/micro/corridor_benchmarks.cpp

@@ -12,13 +12,16 @@
 #include <rviz/config.h>
 #include <rviz/display_context.h>
 #include <rviz/frame_manager.h>
-#include <rviz/properties/bool_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/ros_topic_property.h>
+#include <rviz/properties/bool_property.h>
+#include <rviz/properties/color_property.h>
 #include <rviz/properties/status_property.h>
+#include <rviz/properties/tf_frame_property.h>
 #include <rviz/render_panel.h>
 #include <rviz/view_manager.h>
 
+#include "rviz_projector/displays/acknowledge_properties.h"
 #include "rviz_projector/displays/config_check.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/displays/projection_change_notifier.h"
@@ -38,6 +41,10 @@ constexpr std::size_t kMaxCloudColumns = 20000;
 /// 200,000-return scan would otherwise be 200,000 columns (6 million vertices) a frame. Real
 /// 2D scanners give at most a few thousand returns, masked return by return.
 constexpr std::size_t kMaxScanColumns = 20000;
+/// The Acknowledge arcs' height above the floor: over the path's arrows (1 cm by default).
+constexpr double kAcknowledgeHeight = 0.015;
+/// Seconds between two redraws of a fading arc.
+constexpr double kFadeStep = 1.0 / 60.0;
 
 /// The cloud's cell side: Margin (so a column widens by at most half a margin), at least 5 cm.
 double cloudCell(double margin)
@@ -81,6 +88,7 @@ ProjectionMaskDisplay::ProjectionMaskDisplay()
       "Optional sensor_msgs/PointCloud2 (e.g. a depth camera): its points between the floor and Height mask too. "
       "Empty: none.",
       this, SLOT(updateCloudTopic()), this);
+  ack_properties_ = std::make_unique<AcknowledgeProperties>(this);
 }
 
 ProjectionMaskDisplay::~ProjectionMaskDisplay()
@@ -96,13 +104,19 @@ ProjectionMaskDisplay::~ProjectionMaskDisplay()
       main_window_->removeListener(this);
     }
   }
+  ack_.unsubscribe();
   occluder_mesh_.reset();
   outline_mesh_.reset();
+  ack_mesh_.reset();
   // OGRE destroys no child with its parent: rviz destroys the display's scene node, which only
   // detaches this one, left in the scene manager for ever (issue 23: one leaked per display).
   if (occluder_node_)
   {
     scene_manager_->destroySceneNode(occluder_node_);
+  }
+  if (ack_node_)
+  {
+    scene_manager_->destroySceneNode(ack_node_);
   }
   if (outline_node_)
   {
@@ -116,6 +130,10 @@ void ProjectionMaskDisplay::onInitialize()
   MFDClass::onInitialize();
   occluder_node_ = scene_node_->createChildSceneNode();
   occluder_mesh_ = std::make_unique<FloorMesh>(scene_manager_, occluder_node_);
+  // The arcs under the display's node: the projectors' Visibility ticks apply; shown in the main view.
+  ack_node_ = scene_node_->createChildSceneNode();
+  ack_mesh_ = std::make_unique<FloorMesh>(scene_manager_, ack_node_);
+  ack_properties_->robot_frame->setFrameManager(context_->getFrameManager());
   // The outline is not under the display's node: rviz sets the visibility flags of everything there
   // (the Visibility ticks of each projector). Its own flag, the main view's bit only, keeps it out of
   // every projector view (their viewports show only their own bit).
@@ -144,6 +162,7 @@ void ProjectionMaskDisplay::onEnable()
   occluder_mesh_->setShown(true);
   updateOutline();
   updateCloudTopic();
+  updateAcknowledge();
   ProjectionChangeNotifier::notify();
 }
 
@@ -152,6 +171,7 @@ void ProjectionMaskDisplay::onDisable()
   MFDClass::onDisable();
   pauseDraining();  // nothing to drain: no subscription while disabled
   cloud_sub_.shutdown();
+  ack_.unsubscribe();
   scene_node_->setVisible(false);
   occluder_mesh_->setShown(false);
   updateOutline();
@@ -174,13 +194,15 @@ void ProjectionMaskDisplay::load(const rviz::Config& config)
   {
     check.number(config.mapGetChild(p->getName()), p);
   }
-  if (check.report().isEmpty())
+  const QString acknowledge = ack_properties_->checkLoaded(config);
+  if (check.report().isEmpty() && acknowledge.isEmpty())
   {
     deleteStatus("Config");
   }
   else
   {
-    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " + check.report());
+    setStatus(rviz::StatusProperty::Warn, "Config", "Unusable values in the config replaced: " +
+                                                   QStringList({check.report(), acknowledge}).filter(QRegExp(".")).join("; "));
   }
 }
 
@@ -264,6 +286,11 @@ void ProjectionMaskDisplay::processMessage(const sensor_msgs::LaserScan::ConstPt
   scan.count = msg->ranges.size();
   const MaskInputCount count = scanToFloorPoints(scan, fromOgre(position, orientation), scan_points_);
   scan_stamp_ = msg->header.stamp;
+  if (ack_properties_->enabled->getBool())
+  {
+    // The returns in the scan's order (before any thinning to cells): people are their clusters.
+    ack_.addScan(scan_points_, scan_stamp_.toSec(), ack_properties_->clusters(), ack_properties_->tracker());
+  }
   scan_in_cells_ = scan_points_.size() > kMaxScanColumns;
   if (scan_in_cells_)
   {
@@ -376,6 +403,15 @@ void ProjectionMaskDisplay::drainQueue()
   drain();
   tryPendingCloud();
   releaseStale();
+  // A new path; or an arc fading (once its person left the scan), redrawn at most every
+  // kFadeStep of ROS time (the drain runs every 5 ms, projectors show at most 60 frames/s).
+  const bool news = ack_.takeNews();
+  const double now = RosClock::shared().policy().rosNow();
+  if (news || (ack_.fading() && !(std::abs(now - ack_faded_at_) < kFadeStep)))
+  {
+    ack_faded_at_ = now;
+    redrawAcknowledge();
+  }
 }
 
 void ProjectionMaskDisplay::releaseStale()
@@ -391,6 +427,7 @@ void ProjectionMaskDisplay::releaseStale()
   {
     scan_stamp_ = ros::Time();
     scan_points_.clear();
+    ack_.scanLost(now.toSec(), ack_properties_->tracker());
     setStatus(rviz::StatusProperty::Warn, "Scan",
               QString("No scan newer than Max scan age (%1 s): mask released, nothing is masked").arg(max_age));
     changed = true;
@@ -448,6 +485,7 @@ void ProjectionMaskDisplay::clearMask()
   scan_stamp_ = ros::Time();
   cloud_stamp_ = ros::Time();
   pending_cloud_.reset();
+  ack_.clear();
   rebuild();
 }
 
@@ -474,8 +512,76 @@ void ProjectionMaskDisplay::rebuild()
   }
   occluder_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue::Black);
   outline_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue(1.0f, 0.6f, 0.0f, 0.35f));
+  redrawAcknowledge();  // in the same frame as the scan's mask
   ProjectionChangeNotifier::notify();
   context_->queueRender();
+}
+
+void ProjectionMaskDisplay::updateAcknowledge()
+{
+  if (!initialized())
+  {
+    return;
+  }
+  if (isEnabled() && ack_properties_->enabled->getBool())
+  {
+    ack_.subscribe(update_nh_, ack_properties_->wantedTopic());
+  }
+  else
+  {
+    ack_.unsubscribe();
+  }
+  redrawAcknowledge();
+}
+
+std::size_t ProjectionMaskDisplay::acknowledgeTriangles() const
+{
+  return ack_mesh_ ? ack_mesh_->triangleCount() : 0;
+}
+
+void ProjectionMaskDisplay::redrawAcknowledge()
+{
+  if (!ack_mesh_)
+  {
+    return;
+  }
+  const AcknowledgeProperties& props = *ack_properties_;
+  if (!isEnabled() || !props.enabled->getBool())
+  {
+    deleteStatus("Acknowledge");
+    ack_status_.clear();
+    if (ack_drawn_)
+    {
+      ack_mesh_->clear();
+      ack_drawn_ = false;
+      ProjectionChangeNotifier::notify();
+    }
+    return;
+  }
+  const double now = RosClock::shared().policy().rosNow();
+  // The square columns reach Margin x sqrt(2) from a return (a scan thinned to cells: its wider margin).
+  const double margin = margin_property_->getFloat();
+  const double column = scan_in_cells_ ? margin + cloudCell(margin) : margin;
+  const AcknowledgeFrame& frame = ack_.build(now, *context_->getFrameManager(), props.robot_frame->getFrameStd(),
+                                             props.arc(), props.tracker(), column * std::sqrt(2.0));
+  const QColor c = props.color->getColor();
+  if (ack_drawn_ || !frame.triangles.empty())
+  {
+    ack_mesh_->setFlatTriangles(frame.triangles, frame.alpha, kAcknowledgeHeight,
+                                Ogre::ColourValue(c.redF(), c.greenF(), c.blueF(), 1.0f));
+    ack_drawn_ = !frame.triangles.empty();
+    ProjectionChangeNotifier::notify();
+    context_->queueRender();
+  }
+  const QString text = QString::fromStdString(frame.status.text);
+  if (text != ack_status_)
+  {
+    ack_status_ = text;
+    setStatus(frame.status.level == CueStatus::Level::Ok
+                  ? rviz::StatusProperty::Ok
+                  : (frame.status.level == CueStatus::Level::Warn ? rviz::StatusProperty::Warn : rviz::StatusProperty::Error),
+              "Acknowledge", text);
+  }
 }
 }  // namespace rviz_projector
 

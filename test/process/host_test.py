@@ -2,7 +2,8 @@
 """projector_host as the robot runs it (issue 13): a real process under the suite's X server.
 
 - it shows what rviz shows for the same config (same lit pixels, centroid within 0.5 px), the
-  ProjectedPath's Stop zone, Corridor and Off-view cue (issue 25) included;
+  ProjectedPath's Stop zone, Corridor and Off-view cue and the ProjectionMask's Acknowledge arc
+  (issue 25) included;
 - a reload with a changed property changes the pixels; a broken reload (bad YAML, a plugin that
   is not installed, a property value of the wrong type, no ProjectorCamera) is refused with a
   message, keeps the old picture and the process;
@@ -13,6 +14,7 @@
   (exit 3), a bad command line (exit 2), a plugin that is not installed (skipped, rest runs).
 The CameraInfo and tf come from host.test (launch/projector.launch).
 """
+import math
 import os
 import shutil
 import signal
@@ -27,6 +29,7 @@ import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry, Path
+from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker
 
@@ -49,6 +52,7 @@ OFF_VIEW_DISPLAY = ("    - Class: rviz_projector/ProjectedPath\n      Enabled: t
                     "      Topic: /host_test/off_view_plan\n      Height above floor: 0.02\n"
                     "      Off-view cue:\n        Value: true\n        Projector info topic: /projector/camera_info\n"
                     "      Value: true\n")
+ARC = (255, 255, 255)  # the Acknowledge arc in its default Color (white)
 
 
 def xrandr(*args):
@@ -75,6 +79,7 @@ class HostTest(unittest.TestCase):
         cls.plan = rospy.Publisher("/host_test/plan", Path, queue_size=1, latch=True)
         cls.off_view_plan = rospy.Publisher("/host_test/off_view_plan", Path, queue_size=1, latch=True)
         cls.odom = rospy.Publisher("/host_test/odom", Odometry, queue_size=1)
+        cls.scan = rospy.Publisher("/host_test/scan", LaserScan, queue_size=1)
         cls.diagnostics = []
         cls.diag_lock = threading.Lock()
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
@@ -89,6 +94,7 @@ class HostTest(unittest.TestCase):
         self.procs = []
         self.tmp = tempfile.mkdtemp(prefix="host_test_")
         self.odometry_speed = None  # set: wait_colour publishes this forward speed with each try
+        self.person = None  # set (x, y in map): wait_colour publishes a scan of a person there with each try
         self.publish_path()
 
     def tearDown(self):
@@ -105,6 +111,21 @@ class HostTest(unittest.TestCase):
         right = make_path(dx=0.0, dy=-0.05)
         right.header.stamp = path.header.stamp
         self.off_view_plan.publish(right)
+
+    def publish_person(self):
+        """A scan from the map's origin of a person at self.person: 17 beams 0.01 rad apart, each
+        returning 0.1 m short of the person's centre."""
+        x, y = self.person
+        scan = LaserScan()
+        scan.header.frame_id = "map"
+        scan.header.stamp = rospy.Time.now()
+        scan.angle_increment = 0.01
+        scan.angle_min = math.atan2(y, x) - 0.08
+        scan.angle_max = scan.angle_min + 0.16
+        scan.range_min = 0.05
+        scan.range_max = 10.0
+        scan.ranges = [math.hypot(x, y) - 0.1] * 17
+        self.scan.publish(scan)
 
     def config_copy(self, name="host.rviz", replace=None):
         with open(os.path.join(CONFIGS, name)) as f:
@@ -147,6 +168,8 @@ class HostTest(unittest.TestCase):
                 odom.child_frame_id = "base_link"
                 odom.twist.twist.linear.x = self.odometry_speed
                 self.odom.publish(odom)
+            if self.person is not None:
+                self.publish_person()
             pixels = grab_window(self.x, w)
             if any(pixels.count_colour(c) < n for c, n in (also or [])):
                 return None
@@ -203,6 +226,35 @@ class HostTest(unittest.TestCase):
         ca, cb = rviz_pixels.centroid(sorted(a)), host_pixels.centroid(sorted(b))
         self.assertLessEqual(abs(ca[0] - cb[0]), 0.5, "centroid x: rviz %.2f, host %.2f" % (ca[0], cb[0]))
         self.assertLessEqual(abs(ca[1] - cb[1]), 0.5, "centroid y: rviz %.2f, host %.2f" % (ca[1], cb[1]))
+
+    def test_acknowledge_same_pixels_as_rviz(self):
+        # A ProjectionMask with Acknowledge on (the robot at the map's origin, the path along +x)
+        # and a person 0.35 m beside the path: the arc in rviz's projector window and in the host's.
+        mask = ("    - Class: rviz_projector/ProjectionMask\n      Enabled: true\n      Name: Mask\n"
+                "      Topic: /host_test/scan\n      Acknowledge:\n        Value: true\n"
+                "        Path topic: /host_test/plan\n        Robot frame: map\n      Value: true\n")
+        camera = "    - Class: rviz_projector/ProjectorCamera\n"
+        config = self.config_copy(replace={camera: mask + camera})
+        self.person = (1.1, 0.35)
+        rviz = RvizProcess(config, label="host_acknowledge_rviz")
+        self.procs.append(rviz)
+        shown = self.wait_colour(rviz.pid, ARC, timeout=START_TIMEOUT, also=[(MAGENTA, 200)])
+        self.assertIsNotNone(shown, "rviz never showed the arc: " + rviz.log_tail())
+        _, rviz_pixels = shown
+        rviz.stop()
+        self.procs.remove(rviz)
+        self.assertTrue(wait_for(lambda: not self.x.mapped_output_windows(), 10.0), "rviz's window stayed")
+        host = self.start_host(config)
+        shown = self.wait_colour(host.pid, ARC, timeout=START_TIMEOUT, also=[(MAGENTA, 200)])
+        self.assertIsNotNone(shown, "projector_host never showed the arc: " + host.log_tail())
+        _, host_pixels = shown
+        arc_rviz, arc_host = rviz_pixels.count_colour(ARC, 30), host_pixels.count_colour(ARC, 30)
+        self.assertLessEqual(abs(arc_rviz - arc_host), 0.01 * arc_rviz,
+                             "arc pixels: rviz %d, host %d" % (arc_rviz, arc_host))
+        a = set(rviz_pixels.lit())
+        b = set(host_pixels.lit())
+        differing = len(a ^ b)
+        self.assertLessEqual(differing, 0.01 * len(a), "%d of %d lit pixels differ" % (differing, len(a)))
 
     def test_reload_changes_pixels_and_broken_reloads_keep_them(self):
         config = self.config_copy()

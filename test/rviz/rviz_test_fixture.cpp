@@ -243,10 +243,11 @@ rviz::Property* descendant(rviz::Property* group, const std::string& path)
 }  // namespace
 
 std::map<std::string, std::string> RvizTest::expectGroupSavedAndLoaded(const QString& group_name,
-                                                                     const std::map<std::string, QVariant>& values)
+                                                                     const std::map<std::string, QVariant>& values,
+                                                                     const QString& class_id)
 {
   std::map<std::string, std::string> shown;
-  rviz::Display* d = rviz_->addDisplay("rviz_projector/ProjectedPath", "Projected path");
+  rviz::Display* d = rviz_->addDisplay(class_id, "Saved display");
   EXPECT_NE(d, nullptr);
   if (d == nullptr)
   {

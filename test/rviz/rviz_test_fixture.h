@@ -80,12 +80,13 @@ protected:
   /// Publishes a static transform parent -> child (x, y, z, yaw).
   void publishStaticTransform(const std::string& parent, const std::string& child, double x, double y, double z,
                               double yaw);
-  /// A ProjectedPath with `values` set in its group `group`, the group switched on, saved to a
-  /// file and loaded into a fresh rviz (this one closed): expects the switch and every value as the
-  /// first rviz showed it. Returns those shown values (the text of each property). A name may be a
-  /// path of child names joined by '/' (a group inside the group).
-  std::map<std::string, std::string> expectGroupSavedAndLoaded(const QString& group,
-                                                               const std::map<std::string, QVariant>& values);
+  /// A display of `class_id` (a ProjectedPath unless told) with `values` set in its group `group`,
+  /// the group switched on, saved to a file and loaded into a fresh rviz (this one closed): expects
+  /// the switch and every value as the first rviz showed it. Returns those shown values (the text
+  /// of each property). A name may be a path of child names joined by '/' (a group inside the group).
+  std::map<std::string, std::string> expectGroupSavedAndLoaded(
+      const QString& group, const std::map<std::string, QVariant>& values,
+      const QString& class_id = "rviz_projector/ProjectedPath");
 
   ros::NodeHandle nh_;
   std::unique_ptr<RvizInstance> rviz_;

@@ -2,7 +2,8 @@
 // scanner (and optionally a point cloud) sees above the floor, drawn only in projector views, so no
 // light falls on people, legs or bags and arrows behind them are cut where they block the beam.
 // An orchestrator: the core's scanToFloorPoints / OccluderMesh make the geometry, FloorMesh draws it,
-// MainViewExclusion keeps it out of rviz's main view.
+// MainViewExclusion keeps it out of rviz's main view. The Acknowledge group (AcknowledgeProperties,
+// AcknowledgeSource) draws an arc in front of each person near the path ahead, from the same scan.
 #pragma once
 
 #include "rviz_projector/core/clock_policy.h"
@@ -21,6 +22,7 @@
 
 #include "rviz_projector/core/projection_mask.h"
 #include "rviz_projector/core/vec2.h"
+#include "rviz_projector/displays/acknowledge_source.h"
 #include "rviz_projector/displays/private_callback_queue.h"
 #endif
 
@@ -40,6 +42,7 @@ class RosTopicProperty;
 namespace rviz_projector
 {
 class FloorMesh;
+struct AcknowledgeProperties;
 
 class ProjectionMaskBase : protected PrivateCallbackQueue, public rviz::MessageFilterDisplay<sensor_msgs::LaserScan>
 {
@@ -57,6 +60,9 @@ public:
 
   /// Occluder columns drawn now (one per used return or cloud point).
   std::size_t columns() const { return occluders_.columns(); }
+  /// The Acknowledge part (tests read its tracks) and the arcs' triangles drawn now.
+  const AcknowledgeSource& acknowledgeSource() const { return ack_; }
+  std::size_t acknowledgeTriangles() const;
 
   // The main view's render window: the occluders are hidden while it renders, the outline shown.
   void preViewportUpdate(const Ogre::RenderTargetViewportEvent& event) override;
@@ -73,6 +79,7 @@ private Q_SLOTS:
   void updateShape();
   void updateCloudTopic();
   void updateOutline();
+  void updateAcknowledge();
 
 private:
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& msg);
@@ -88,6 +95,8 @@ private:
   void releaseStale();
   void rebuild();
   void clearMask();
+  /// The Acknowledge arcs at this instant: built by ack_, drawn by ack_mesh_, with the status.
+  void redrawAcknowledge();
 
   rviz::FloatProperty* height_property_;
   rviz::FloatProperty* margin_property_;
@@ -112,5 +121,12 @@ private:
   std::unique_ptr<FloorMesh> outline_mesh_;
   Ogre::RenderWindow* main_window_ = nullptr;
   std::string main_window_name_;  ///< kept: the window may be gone before this display (never ask it then)
+  std::unique_ptr<AcknowledgeProperties> ack_properties_;
+  AcknowledgeSource ack_;
+  Ogre::SceneNode* ack_node_ = nullptr;
+  std::unique_ptr<FloorMesh> ack_mesh_;
+  QString ack_status_;  ///< the status shown (set again only when it changes)
+  bool ack_drawn_ = false;
+  double ack_faded_at_ = 0.0;  ///< ROS time of the last redraw of a fading arc
 };
 }  // namespace rviz_projector
