@@ -109,4 +109,23 @@ const std::vector<rviz_projector::Arrow>& arrows(std::size_t count)
   }
   return it->second;
 }
+
+std::vector<rviz_projector::Vec2> litRectangle(const rviz_projector::Vec2& robot, double heading, double near,
+                                               double far, double half)
+{
+  using rviz_projector::Vec2;
+  const Vec2 forward{std::cos(heading), std::sin(heading)};
+  const Vec2 left = rviz_projector::perpendicular(forward);
+  const Vec2 corners[4] = {{near, half}, {far, half}, {far, -half}, {near, -half}};
+  std::vector<Vec2> outline;
+  for (int c = 0; c < 4; ++c)
+  {
+    for (int k = 0; k < 8; ++k)
+    {
+      const Vec2 local = corners[c] + (corners[(c + 1) % 4] - corners[c]) * (k / 8.0);
+      outline.push_back(robot + forward * local.x + left * local.y);
+    }
+  }
+  return outline;
+}
 }  // namespace rviz_projector_bench

@@ -24,4 +24,9 @@ const nav_msgs::Path& pathMessage(std::size_t poses);
 /// Exactly `count` arrows, as the spacer places them (Exact mode, default spacing) along a path
 /// long enough; cached.
 const std::vector<rviz_projector::Arrow>& arrows(std::size_t count);
+
+/// A lit area as FloorFootprint's outline gives it: the rectangle [near, far] x [-half, half] in
+/// the frame of a robot at `robot` heading `heading`, 8 points per side, clockwise.
+std::vector<rviz_projector::Vec2> litRectangle(const rviz_projector::Vec2& robot, double heading, double near,
+                                               double far, double half);
 }  // namespace rviz_projector_bench

@@ -21,24 +21,6 @@ namespace
 {
 using namespace rviz_projector;
 
-/// A rectangle [0.3, 1.3] x [-0.4, 0.4] m ahead of the robot, 8 points per side, clockwise.
-std::vector<Vec2> litArea(const Vec2& robot, double heading)
-{
-  const Vec2 forward{std::cos(heading), std::sin(heading)};
-  const Vec2 left = perpendicular(forward);
-  const Vec2 corners[4] = {{0.3, 0.4}, {1.3, 0.4}, {1.3, -0.4}, {0.3, -0.4}};
-  std::vector<Vec2> outline;
-  for (int c = 0; c < 4; ++c)
-  {
-    for (int k = 0; k < 8; ++k)
-    {
-      const Vec2 local = corners[c] + (corners[(c + 1) % 4] - corners[c]) * (k / 8.0);
-      outline.push_back(robot + forward * local.x + left * local.y);
-    }
-  }
-  return outline;
-}
-
 void everything(benchmark::State& state, bool speed_coded)
 {
   const std::vector<Vec2>& points = rviz_projector_bench::planarPath(static_cast<std::size_t>(state.range(0)));
@@ -84,7 +66,7 @@ void everything(benchmark::State& state, bool speed_coded)
     off_view_input.heading = headingAt(points, lengths, start, 0.2) + 0.785;
     off_view_input.start = start;
     off_view_input.drawn_from = cues.horizonStart();
-    off_view_input.lit = litArea(off_view_input.robot, off_view_input.heading);
+    off_view_input.lit = rviz_projector_bench::litRectangle(off_view_input.robot, off_view_input.heading, 0.3, 1.3, 0.4);
     benchmark::DoNotOptimize(off_view.build(points, lengths, off_view_input, off_view_parameters).triangles.data());
     benchmark::DoNotOptimize(cues.arrows().data());
   }

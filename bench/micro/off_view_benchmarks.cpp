@@ -18,24 +18,6 @@ namespace
 {
 using namespace rviz_projector;
 
-/// A rectangle [near, far] x [-half, half] in the robot's frame, 8 points per side, clockwise.
-std::vector<Vec2> litArea(const Vec2& robot, double heading, double near, double far, double half)
-{
-  const Vec2 forward{std::cos(heading), std::sin(heading)};
-  const Vec2 left = perpendicular(forward);
-  const Vec2 corners[4] = {{near, half}, {far, half}, {far, -half}, {near, -half}};
-  std::vector<Vec2> outline;
-  for (int c = 0; c < 4; ++c)
-  {
-    for (int k = 0; k < 8; ++k)
-    {
-      const Vec2 local = corners[c] + (corners[(c + 1) % 4] - corners[c]) * (k / 8.0);
-      outline.push_back(robot + forward * local.x + left * local.y);
-    }
-  }
-  return outline;
-}
-
 void offView(benchmark::State& state, bool narrow)
 {
   const std::vector<Vec2>& points = rviz_projector_bench::planarPath(static_cast<std::size_t>(state.range(0)));
@@ -59,8 +41,7 @@ void offView(benchmark::State& state, bool narrow)
     input.heading = narrow ? path_heading : path_heading + 0.785;
     input.start = start;
     input.drawn_from = start;
-    input.lit = narrow ? litArea(input.robot, input.heading, 0.3, 1.3, 0.15)
-                        : litArea(input.robot, input.heading, 0.3, 1.3, 0.4);
+    input.lit = rviz_projector_bench::litRectangle(input.robot, input.heading, 0.3, 1.3, narrow ? 0.15 : 0.4);
     benchmark::DoNotOptimize(cue.build(points, lengths, input, parameters).triangles.data());
   }
   state.counters["triangles"] = static_cast<double>(cue.result().triangles.size() / 3);
