@@ -158,7 +158,7 @@ const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const void
   const OffViewResult& result = cue_.build(path, lengths, input, parameters);
   // A cue left out because it would cover arrows in view is the design working, not a fault.
   const bool normal = result.kind != OffViewKind::None || result.reason == "path visible" ||
-                      result.reason.rfind("arrived", 0) == 0;
+                      result.reason == "destination visible" || result.reason.rfind("arrived", 0) == 0;
   std::string text = result.kind == OffViewKind::None ? "Nothing drawn: " + result.reason
                                                       : std::string(toString(result.kind)) + ": " + result.reason;
   status_ = CueStatus{normal ? CueStatus::Level::Ok : CueStatus::Level::Warn, text};

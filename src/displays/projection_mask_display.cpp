@@ -140,6 +140,7 @@ void ProjectionMaskDisplay::onInitialize()
   outline_node_ = scene_manager_->getRootSceneNode()->createChildSceneNode();
   outline_mesh_ = std::make_unique<FloorMesh>(scene_manager_, outline_node_);
   outline_mesh_->setVisibilityFlags(context_->getDefaultVisibilityBit());
+  outline_mesh_->setLayer(10);  // translucent, over every floor layer of ProjectedPath (1..6)
   updateOutline();
   rviz::ViewManager* views = context_->getViewManager();
   rviz::RenderPanel* panel = views ? views->getRenderPanel() : nullptr;
