@@ -124,7 +124,8 @@ def groups_of(pipelines):
             reference = HOST_REFERENCE if HOST_REFERENCE in pipelines else None
             groups[("host", p)] = {
                 "title": "projector_host (no rviz GUI; %s) vs %s" % (
-                    "projector Anti-aliasing off" if "aaoff" in p else "projector Anti-aliasing on",
+                    "projector Anti-aliasing on" if base == "host" else
+                    "projector Anti-aliasing off" if "aaoff" in p else "config bench/e2e/%s.rviz" % base,
                     "rviz --disable-anti-aliasing + ProjectorCamera" if reference else "nothing (no ours+noaa run)"),
                 "ours": p, "baseline": reference}
             continue
