@@ -463,6 +463,7 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
   const double end = std::min(total, start + look_ahead);
   if (!(end - start >= 0.01))
   {
+    result_.by_design = true;
     return refuse("arrived (no path ahead)");
   }
   const Window window = judgeWindow(points, lengths, start, end, lit);
@@ -472,6 +473,7 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
   {
     shown_ = false;
     result_.reason = "path visible";
+    result_.by_design = true;
     return result_;
   }
   shown_ = true;
@@ -502,6 +504,7 @@ const OffViewResult& OffViewCue::build(const std::vector<Vec2>& points, const st
     // may lie between the robot and the lit area, with no arrows to show).
     shown_ = false;
     result_.reason = "destination visible";
+    result_.by_design = true;
     return result_;
   }
   bool placed = false;

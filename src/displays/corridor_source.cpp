@@ -44,6 +44,7 @@ void CorridorSource::unsubscribe()
 void CorridorSource::clear()
 {
   last_.reset();
+  kept_message_.reset();
 }
 
 void CorridorSource::onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg)
@@ -98,9 +99,14 @@ CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std
     result.status = CueStatus{CueStatus::Level::Warn, "No footprint received yet on " + topic + ": no corridor"};
     return result;
   }
+  if (kept_message_ == last_ && kept_frame_ == robot_frame)
+  {
+    return kept_;  // this runs every frame; the message's outline at its stamp does not change
+  }
   // move_base publishes the outline where the robot was at the stamp, in the costmap's frame: at
   // that stamp it is the robot's own outline. A stamp tf cannot give (zero, too old) takes the latest.
   geometry_msgs::TransformStamped to_robot;
+  bool at_stamp = !last_->header.stamp.isZero();
   try
   {
     try
@@ -109,6 +115,7 @@ CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std
     }
     catch (const tf2::TransformException&)
     {
+      at_stamp = false;
       to_robot = tf.lookupTransform(robot_frame, last_->header.frame_id, ros::Time(0));
     }
   }
@@ -129,6 +136,15 @@ CorridorFootprint CorridorSource::fromTopic(const tf2_ros::Buffer& tf, const std
     tf2::doTransform(in, out, to_robot);
     polygon.push_back({out.x, out.y});
   }
-  return judged(std::move(polygon), "Footprint on " + topic);
+  ++transforms_;
+  result = judged(std::move(polygon), "Footprint on " + topic);
+  const auto bare = [](const std::string& frame) { return frame.rfind('/', 0) == 0 ? frame.substr(1) : frame; };
+  if (at_stamp || bare(last_->header.frame_id) == bare(robot_frame))
+  {
+    kept_message_ = last_;
+    kept_frame_ = robot_frame;
+    kept_ = result;
+  }
+  return result;
 }
 }  // namespace rviz_projector

@@ -157,8 +157,7 @@ const OffViewResult& OffViewSource::cueAt(rviz::FrameManager& frames, const void
   input.lit = lit_;
   const OffViewResult& result = cue_.build(path, lengths, input, parameters);
   // A cue left out because it would cover arrows in view is the design working, not a fault.
-  const bool normal = result.kind != OffViewKind::None || result.reason == "path visible" ||
-                      result.reason == "destination visible" || result.reason.rfind("arrived", 0) == 0;
+  const bool normal = result.kind != OffViewKind::None || result.by_design;
   std::string text = result.kind == OffViewKind::None ? "Nothing drawn: " + result.reason
                                                       : std::string(toString(result.kind)) + ": " + result.reason;
   status_ = CueStatus{normal ? CueStatus::Level::Ok : CueStatus::Level::Warn, text};

@@ -32,7 +32,7 @@ ros::Time ProjectedPathDisplay::cueTime()
   return ros::Time(std::max(0.0, RosClock::shared().tick().rosNow()));
 }
 
-void ProjectedPathDisplay::checkMarchingMode()
+void ProjectedPathDisplay::checkSpacingCombinations()
 {
   if (cue_settings_.marching && mode_property_->getOptionInt() == static_cast<int>(SpacingMode::Paper))
   {
@@ -78,7 +78,7 @@ void ProjectedPathDisplay::updateCues()
     coded_speed_ = 0.0;
   }
   spacer_.setParameters(spacingParameters());
-  checkMarchingMode();
+  checkSpacingCombinations();
   if (!cuesActive() && arrow_mesh_)
   {
     robot_status_shown_ = CueStatus();

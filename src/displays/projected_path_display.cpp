@@ -423,7 +423,7 @@ void ProjectedPathDisplay::checkPathTimeout()
 void ProjectedPathDisplay::updateSpacing()
 {
   spacer_.setParameters(spacingParameters());
-  checkMarchingMode();
+  checkSpacingCombinations();
   rebuild();
 }
 

@@ -96,6 +96,7 @@ TEST(OffViewCue, PathStraightAheadIsVisible)
   EXPECT_NEAR(r.visible_fraction, 2.0 / 3.0, 1e-9);
   EXPECT_TRUE(r.triangles.empty());
   EXPECT_EQ(r.reason, "path visible");
+  EXPECT_TRUE(r.by_design);  // a status of Ok, not a warning
   // The window starts at the robot's place on the path: path from (-1, 0), robot 1 m along it at the
   // origin: the same 2/3. Judged from the path's first point instead, [-1, 0.5] would hold 0.2 m
   // lit (0.133: a cue).
@@ -298,6 +299,7 @@ TEST(OffViewCue, ALitDestinationIsEnoughEvenWhenLittleOfThePathIs)
   const OffViewResult& r = cue.build(c.points, c.lengths, c.input, OffViewParameters());
   EXPECT_EQ(r.kind, OffViewKind::None);
   EXPECT_EQ(r.reason, "destination visible");
+  EXPECT_TRUE(r.by_design);
   EXPECT_TRUE(r.triangles.empty());
   EXPECT_NEAR(r.visible_fraction, 0.05 / 0.35, 1e-9);
   // The same destination 1 cm before the lit area: a cue.
@@ -379,11 +381,15 @@ TEST(OffViewCue, BadInputGivesNoneWithAReason)
 {
   const OffViewParameters parameters;
   OffViewCue cue;
+  bool by_design = false;
   const auto reasonFor = [&](Case c) {
     const OffViewResult& r = cue.build(c.points, c.lengths, c.input, parameters);
     EXPECT_EQ(r.kind, OffViewKind::None);
     EXPECT_TRUE(r.triangles.empty());
     EXPECT_FALSE(cue.shown());
+    by_design = r.by_design;
+    // Every refusal of unusable input is a warning; only "arrived" is the design working.
+    EXPECT_EQ(r.by_design, r.reason == "arrived (no path ahead)") << r.reason;
     return r.reason;
   };
   const std::vector<Vec2> path{{0, 0}, {0.2, 0}, {0.2, 2}};  // would give an edge arrow
@@ -429,6 +435,7 @@ TEST(OffViewCue, BadInputGivesNoneWithAReason)
     Case c = makeCase(path);
     c.input.start = 2.2;  // at the destination
     EXPECT_EQ(reasonFor(c), "arrived (no path ahead)");
+    EXPECT_TRUE(by_design);
   }
   {
     OffViewParameters zero;

@@ -76,13 +76,11 @@ protected:
   /// `points` from the robot (standing at x 0.3 facing +x), the corridor on (Length `length`).
   bool pathWithCorridor(const std::vector<Vec2>& points, double length)
   {
-    publishStaticTransform("map", "base_link", kRobotX, 0.0, 0.0, 0.0);
-    path_ = addPath("/test/plan", points);
+    path_ = addFloorPathFromRobot(points, kRobotX, 0.0);
     if (path_ == nullptr)
     {
       return false;
     }
-    path_->subProp("Height above floor")->setValue(0.0);  // the oracle's points lie on the floor
     corridor()->subProp("Length")->setValue(length);
     corridor()->setValue(true);
     return true;
@@ -208,6 +206,20 @@ TEST_F(CorridorTest, FootprintFromATopicInAnotherFrame)
   EXPECT_TRUE(sameColour(colourAt(frame, {1.55, 0.3}), kBlack, 20)) << "the robot's front at the end: x 1.5";
   EXPECT_EQ(statusOf(path_, "Corridor").level, rviz::StatusProperty::Ok);
   EXPECT_GT(path_->footprintMessages(), 0u);
+
+  // Moved into the Robot frame once per message (its outline at its stamp cannot change), though
+  // every drawing asks for it: a new Length draws again at once, with the same outline.
+  const std::size_t moved = path_->footprintTransforms();
+  EXPECT_GE(moved, 1u);
+  corridor()->subProp("Length")->setValue(0.7);
+  EXPECT_EQ(path_->footprintTransforms(), moved) << "the same message moved into the Robot frame again";
+  // A zero stamp means the latest transform, which follows the robot: moved again for each drawing.
+  msg.header.stamp = ros::Time();
+  footprint_pub_.publish(msg);
+  ASSERT_TRUE(waitFor([&] { return path_->footprintTransforms() > moved; }));
+  const std::size_t latest = path_->footprintTransforms();
+  corridor()->subProp("Length")->setValue(0.8);
+  EXPECT_GT(path_->footprintTransforms(), latest) << "a zero stamp's outline kept instead of following tf";
 
   // An empty polygon: refused, the arrows keep running.
   msg.polygon.points.clear();

@@ -401,6 +401,18 @@ rviz_projector::ProjectedPathDisplay* ProjectorSceneTest::addPath(const std::str
   return display;
 }
 
+rviz_projector::ProjectedPathDisplay* ProjectorSceneTest::addFloorPathFromRobot(const std::vector<Vec2>& points,
+                                                                               double robot_x, double yaw)
+{
+  publishStaticTransform("map", "base_link", robot_x, 0.0, 0.0, yaw);
+  rviz_projector::ProjectedPathDisplay* path = addPath("/test/plan", points);
+  if (path != nullptr)
+  {
+    path->subProp("Height above floor")->setValue(0.0);
+  }
+  return path;
+}
+
 QImage ProjectorSceneTest::imagePart(const QImage& window) const
 {
   return ProjectorCameraTest::imagePart(window, PixelOracle(info_, kDemoMount));

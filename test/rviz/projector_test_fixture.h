@@ -151,6 +151,11 @@ class ProjectorSceneTest : public ProjectorCameraTest
 protected:
   void SetUp() override;
   rviz_projector::ProjectedPathDisplay* addPath(const std::string& topic, const std::vector<Vec2>& points);
+  /// The robot (base_link) standing at (`robot_x`, 0) facing `yaw` in map, and a ProjectedPath of
+  /// `points` on /test/plan drawn on the floor itself (Height above floor 0: the oracle's points
+  /// lie on the floor). Null if the display could not be made.
+  rviz_projector::ProjectedPathDisplay* addFloorPathFromRobot(const std::vector<Vec2>& points, double robot_x,
+                                                              double yaw = 0.0);
   /// The image part (letterbox removed) of a grabbed window, for info_.
   QImage imagePart(const QImage& window) const;
   /// Where the oracle puts a floor point in the image part of the window (letterbox removed):

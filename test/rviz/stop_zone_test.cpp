@@ -82,13 +82,11 @@ protected:
   /// defaults (Deceleration 0.5, Reaction time 0.3) on /test/odom.
   bool pathWithStopZone(double end)
   {
-    publishStaticTransform("map", "base_link", kRobotX, 0.0, 0.0, 0.0);
-    path_ = addPath("/test/plan", straightPath(end));
+    path_ = addFloorPathFromRobot(straightPath(end), kRobotX, 0.0);
     if (path_ == nullptr)
     {
       return false;
     }
-    path_->subProp("Height above floor")->setValue(0.0);  // the oracle's points lie on the floor
     zone()->subProp("Odometry topic")->setValue("/test/odom");
     zone()->setValue(true);
     return waitFor([&] { return odom_pub_.getNumSubscribers() > 0; });

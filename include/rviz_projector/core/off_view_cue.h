@@ -80,6 +80,9 @@ struct OffViewResult
   std::vector<Vec2> triangles;
   /// Why (None) or what (a cue), for a status.
   std::string reason;
+  /// None because nothing needs showing (the path or the destination is visible, or the robot has
+  /// arrived): the design working, not a fault. False for every refusal of unusable input.
+  bool by_design = false;
   /// The arrow's tip (EdgeArrow, Destination) or the glyph's centre (TurnInPlace).
   Vec2 anchor;
   /// Unit vector the arrow points along; for TurnInPlace the robot's heading.

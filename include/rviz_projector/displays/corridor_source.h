@@ -48,7 +48,12 @@ public:
   /// The typed polygon, read and judged.
   static CorridorFootprint fromText(const std::string& text);
   /// The last message's polygon in `robot_frame` (tf at its stamp, else the latest transform).
+  /// Kept per message and Robot frame once it cannot change any more: in the Robot frame itself,
+  /// or moved with tf at the message's own (non-zero) stamp. Moved with the latest transform (a
+  /// zero or unknown stamp), it is moved again on every call.
   CorridorFootprint fromTopic(const tf2_ros::Buffer& tf, const std::string& robot_frame);
+  /// Polygons moved into the Robot frame so far (tests check the cache above).
+  std::size_t transforms() const { return transforms_; }
   /// Footprint messages taken so far (tests wait for theirs).
   std::size_t messages() const { return messages_; }
   /// Whether a message arrived since the last call (the picture may change at once).
@@ -66,5 +71,10 @@ private:
   geometry_msgs::PolygonStamped::ConstPtr last_;
   bool news_ = false;
   std::size_t messages_ = 0;
+  std::size_t transforms_ = 0;
+  // fromTopic's last result, while it cannot change: for this message in this frame.
+  geometry_msgs::PolygonStamped::ConstPtr kept_message_;
+  std::string kept_frame_;
+  CorridorFootprint kept_;
 };
 }  // namespace rviz_projector

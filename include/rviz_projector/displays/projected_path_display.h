@@ -81,6 +81,7 @@ public:
   std::size_t corridorTriangleCount() const;
   /// Footprint messages the corridor took.
   std::size_t footprintMessages() const { return corridor_source_.messages(); }
+  std::size_t footprintTransforms() const { return corridor_source_.transforms(); }
   /// Triangles of the off-view cue drawn now.
   std::size_t offViewTriangleCount() const;
   /// The off-view cue's source (its lit area, CameraInfo messages taken).
@@ -132,8 +133,10 @@ private:
   void checkGeometry(const SpacingParameters& parameters);
   /// Any cue on (or a State topic set): the drawing comes from CueDrawing, at each frame's time.
   bool cuesActive() const;
-  /// The Marching warning when Marching is on in Paper mode.
-  void checkMarchingMode();
+  /// The warnings for spacing options that do not combine, each under its own status: Marching in
+  /// Paper mode or with Speed-coded spacing ("Marching"), Speed-coded spacing in Paper mode
+  /// ("Speed-coded spacing").
+  void checkSpacingCombinations();
   /// ROS time now, from the clock every display shares (RosClock): the cue timelines' time.
   static ros::Time cueTime();
   /// Draws the cues for `now`; `force`: upload even if the picture looks the same (new colours).
