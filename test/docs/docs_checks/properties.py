@@ -9,22 +9,12 @@ from .cpp import line_of, literal_string, matching, split_args, strip_comments
 
 # (name argument, default argument, parent argument) of rviz's property constructors. None as the
 # parent: the display itself.
-SIGNATURES = {
-    "Property": (0, 1, 3),
-    "BoolProperty": (0, 1, 3),
-    "FloatProperty": (0, 1, 3),
-    "IntProperty": (0, 1, 3),
-    "StringProperty": (0, 1, 3),
-    "ColorProperty": (0, 1, 3),
-    "EnumProperty": (0, 1, 3),
-    "EditableEnumProperty": (0, 1, 3),
-    "VectorProperty": (0, 1, 3),
-    "QuaternionProperty": (0, 1, 3),
-    "FilePathProperty": (0, 1, 3),
-    "RosTopicProperty": (0, 1, 4),
-    "TfFrameProperty": (0, 1, 3),
-    "DisplayGroupVisibilityProperty": (3, 4, None),
-}
+SIGNATURES = dict.fromkeys(
+    ("Property", "BoolProperty", "FloatProperty", "IntProperty", "StringProperty", "ColorProperty", "EnumProperty",
+     "EditableEnumProperty", "VectorProperty", "QuaternionProperty", "FilePathProperty", "TfFrameProperty"),
+    (0, 1, 3))
+SIGNATURES["RosTopicProperty"] = (0, 1, 4)
+SIGNATURES["DisplayGroupVisibilityProperty"] = (3, 4, None)
 NOT_USER_PROPERTIES = {"StatusProperty", "StatusList"}
 TOP_LEVEL_PARENTS = {"this", "display", "parent_display", "nullptr", "NULL"}
 
