@@ -66,7 +66,7 @@ void AcknowledgeSource::clear()
 void AcknowledgeSource::onPath(const nav_msgs::Path::ConstPtr& msg)
 {
   path_ = msg;
-  news_ = true;
+  news_.raise();
   ++path_messages_;
 }
 

@@ -50,7 +50,7 @@ void CorridorSource::clear()
 void CorridorSource::onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg)
 {
   last_ = msg;
-  news_ = true;
+  news_.raise();
   ++messages_;
 }
 

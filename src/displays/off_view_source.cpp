@@ -70,7 +70,7 @@ void OffViewSource::onInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
   calibration_ = std::move(calibration);
   check_ = projectorLens(calibration_, lens_, distortion_);
   ++lens_revision_;
-  news_ = true;
+  news_.raise();
 }
 
 const OffViewResult& OffViewSource::nothing(CueStatus::Level level, const std::string& why)

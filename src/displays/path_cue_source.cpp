@@ -77,7 +77,7 @@ void PathCueSource::onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& ms
   }
   summary_ = summarizeGoals(entries_);
   received_ = true;
-  news_ = true;
+  news_.raise();
   const double now = RosClock::shared().policy().rosNow();  // read by the display's drain, before this
   timeline_.update(summary_, now, stillness_.still(now));
 }

@@ -31,7 +31,7 @@ void StopZoneSource::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 {
   const double now = RosClock::shared().policy().rosNow();  // read by the display's drain, before this
   received_ = true;
-  news_ = true;
+  news_.raise();
   ++messages_;
   last_arrival_ = now;
   // The twist is in child_frame_id (the robot): its planar norm is the robot's speed in any frame.

@@ -37,14 +37,6 @@ using namespace rviz_projector_test;
 namespace
 {
 /// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png (the README's picture).
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 const QRgb kArc = qRgb(255, 255, 255);  // the Color property's default
 constexpr double kLaserZ = 0.3;        // test_laser at (0, 0, 0.3) of map, yaw 0
 constexpr double kMargin = 0.1;        // the mask's Margin (default)

@@ -32,23 +32,9 @@ const QRgb kYellow = qRgb(255, 200, 0);        // the default Color, opaque (edg
 const QRgb kYellowBand = qRgb(77, 60, 0);      // 0.3 of it over black (the band, Alpha 0.3), once
 const char* kRectangle = "[[0.4, 0.3], [-0.2, 0.3], [-0.2, -0.3], [0.4, -0.3]]";
 
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 std::vector<Vec2> straightPath(double end)
 {
-  std::vector<Vec2> points;
-  for (double x = kRobotX; x < end - 1e-9; x += 0.05)
-  {
-    points.push_back({x, 0.0});
-  }
-  points.push_back({end, 0.0});
-  return points;
+  return lineAlongX(kRobotX, end);
 }
 
 /// Turning left round (kRobotX, radius) from the robot, `angle` radians, a pose every 2 cm.

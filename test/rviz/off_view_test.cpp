@@ -43,14 +43,6 @@ constexpr double kMargin = 0.15;         // OffViewParameters' margin (the tip's
 const QRgb kCyan = qRgb(0, 200, 255);    // the default Color, opaque
 constexpr const char* kOwnInfo = "/test/off_view/camera_info";
 
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 /// Straight pieces through `corners`, a point every 5 cm.
 std::vector<Vec2> polyline(const std::vector<Vec2>& corners)
 {

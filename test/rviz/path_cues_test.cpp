@@ -26,14 +26,6 @@ namespace
 {
 /// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png: the README's pictures of the
 /// cues come from these scenes.
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 constexpr double kStart = 0.3, kEnd = 2.5;  // the test path: straight along +x at y = 0
 constexpr double kFirstTip = 0.15;           // circle radius 0.1 + gap 0.05
 constexpr double kSpacing = 0.25, kArrow = 0.18;
@@ -41,13 +33,7 @@ const QRgb kRed = qRgb(255, 0, 0), kWhite = qRgb(255, 255, 255), kGreen = qRgb(0
 
 std::vector<Vec2> straightPath(double end = kEnd)
 {
-  std::vector<Vec2> points;
-  for (double x = kStart; x < end - 1e-9; x += 0.05)
-  {
-    points.push_back({x, 0.0});
-  }
-  points.push_back({end, 0.0});
-  return points;
+  return lineAlongX(kStart, end);
 }
 
 /// Hand-computed tips (x) of the static arrows of straightPath(end) with phase `phase`.

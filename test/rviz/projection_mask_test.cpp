@@ -35,14 +35,6 @@ namespace
 {
 /// With RP_TEST_SHOTS set (a folder), saves `image` there as NAME.png: the README's pictures of the
 /// cues come from these scenes.
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 constexpr double kTip0 = 2.35, kSpacing = 0.25;  // tips of the arrows of the path 0.3 -> 2.5 (no phase)
 
 /// Does the segment from `a` to `b` pass through the box [lo, hi]? (slab test)

@@ -174,6 +174,25 @@ bool greenCentroid(const QImage& image, const Vec2& around, int radius, Vec2& ce
   return true;
 }
 
+void saveShot(const QImage& image, const char* name)
+{
+  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
+  {
+    image.save(QString("%1/%2.png").arg(folder, name));
+  }
+}
+
+std::vector<Vec2> lineAlongX(double from, double to)
+{
+  std::vector<Vec2> points;
+  for (double x = from; x < to - 1e-9; x += 0.05)
+  {
+    points.push_back({x, 0.0});
+  }
+  points.push_back({to, 0.0});
+  return points;
+}
+
 Letterbox litBounds(const QImage& image)
 {
   int first_x = -1, last_x = -1, first_y = -1, last_y = -1;

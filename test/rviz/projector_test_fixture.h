@@ -108,6 +108,10 @@ private:
 
 /// Centroid (pixel-centre coordinates) of the green pixels within `radius` of `around`.
 bool greenCentroid(const QImage& image, const Vec2& around, int radius, Vec2& centroid, int& count);
+/// Saves `image` as RP_TEST_SHOTS/<name>.png when that folder is set (pictures for the guide).
+void saveShot(const QImage& image, const char* name);
+/// Floor points along y = 0 from x `from` every 5 cm, the last exactly at `to`.
+std::vector<Vec2> lineAlongX(double from, double to);
 /// First and last columns and rows holding a pixel brighter than mid-grey in all channels
 /// (-1 when none); returned as a rectangle left, top, width, height.
 Letterbox litBounds(const QImage& image);

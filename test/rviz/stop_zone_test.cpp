@@ -46,23 +46,9 @@ double stopDistance(double v)
   return v * v / (2.0 * kDecel) + v * kReaction;
 }
 
-void saveShot(const QImage& image, const char* name)
-{
-  if (const char* folder = std::getenv("RP_TEST_SHOTS"))
-  {
-    image.save(QString("%1/%2.png").arg(folder, name));
-  }
-}
-
 std::vector<Vec2> straightPath(double end)
 {
-  std::vector<Vec2> points;
-  for (double x = kRobotX; x < end - 1e-9; x += 0.05)
-  {
-    points.push_back({x, 0.0});
-  }
-  points.push_back({end, 0.0});
-  return points;
+  return lineAlongX(kRobotX, end);
 }
 
 class StopZoneTest : public ProjectorSceneTest

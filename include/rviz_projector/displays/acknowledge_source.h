@@ -16,6 +16,7 @@
 #include "rviz_projector/core/acknowledge_arc.h"
 #include "rviz_projector/core/person_clusters.h"
 #include "rviz_projector/core/person_tracker.h"
+#include "rviz_projector/displays/news_flag.h"
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/topic_subscription.h"
 #endif
@@ -70,12 +71,7 @@ public:
   /// Path messages taken so far (tests wait for theirs).
   std::size_t pathMessages() const { return path_messages_; }
   /// Whether a path arrived since the last call.
-  bool takeNews()
-  {
-    const bool news = news_;
-    news_ = false;
-    return news;
-  }
+  bool takeNews() { return news_.take(); }
 
 private:
   void onPath(const nav_msgs::Path::ConstPtr& msg);
@@ -90,7 +86,7 @@ private:
   AcknowledgeFrame frame_;
   bool scan_seen_ = false;
   std::size_t clusters_found_ = 0;   // person-sized clusters of the last scan (before kMaxPeople)
-  bool news_ = false;
+  NewsFlag news_;
   std::size_t path_messages_ = 0;
 };
 }  // namespace rviz_projector

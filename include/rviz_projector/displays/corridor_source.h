@@ -13,6 +13,7 @@
 #include <ros/subscriber.h>
 
 #include "rviz_projector/core/vec2.h"
+#include "rviz_projector/displays/news_flag.h"
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/topic_subscription.h"
 #endif
@@ -57,19 +58,14 @@ public:
   /// Footprint messages taken so far (tests wait for theirs).
   std::size_t messages() const { return messages_; }
   /// Whether a message arrived since the last call (the picture may change at once).
-  bool takeNews()
-  {
-    const bool news = news_;
-    news_ = false;
-    return news;
-  }
+  bool takeNews() { return news_.take(); }
 
 private:
   void onFootprint(const geometry_msgs::PolygonStamped::ConstPtr& msg);
 
   TopicSubscription subscription_;
   geometry_msgs::PolygonStamped::ConstPtr last_;
-  bool news_ = false;
+  NewsFlag news_;
   std::size_t messages_ = 0;
   std::size_t transforms_ = 0;
   // fromTopic's last result, while it cannot change: for this message in this frame.

@@ -19,6 +19,7 @@
 #include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/off_view_cue.h"
 #include "rviz_projector/core/pinhole_model.h"
+#include "rviz_projector/displays/news_flag.h"
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/topic_subscription.h"
 #endif
@@ -68,12 +69,7 @@ public:
   /// CameraInfo messages taken so far (tests wait for theirs).
   std::size_t messages() const { return messages_; }
   /// Whether a CameraInfo with a new lens or frame arrived since the last call.
-  bool takeNews()
-  {
-    const bool news = news_;
-    news_ = false;
-    return news;
-  }
+  bool takeNews() { return news_.take(); }
 
 private:
   void onInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
@@ -106,7 +102,7 @@ private:
   std::uint64_t lit_changes_ = 0;  ///< bumped whenever lit_ is recomputed
   OffViewResult empty_;
   CueStatus status_;
-  bool news_ = false;
+  NewsFlag news_;
   std::size_t messages_ = 0;
   std::size_t builds_ = 0;
 };

@@ -15,6 +15,7 @@
 
 #include "rviz_projector/core/cue_drawing.h"
 #include "rviz_projector/core/goal_cues.h"
+#include "rviz_projector/displays/news_flag.h"
 #endif
 
 namespace rviz
@@ -59,12 +60,7 @@ public:
   const CueStatus& robotStatus() const { return robot_status_; }
   GoalPhase phase() const { return timeline_.phase(); }
   /// Whether a status message arrived since the last call (the picture may change at once).
-  bool takeNews()
-  {
-    const bool news = news_;
-    news_ = false;
-    return news;
-  }
+  bool takeNews() { return news_.take(); }
 
 private:
   void onStatus(const actionlib_msgs::GoalStatusArray::ConstPtr& msg);
@@ -77,7 +73,7 @@ private:
   std::vector<GoalStatusEntry> entries_;  // kept between messages (no allocation once big enough)
   GoalSummary summary_;
   bool received_ = false;
-  bool news_ = false;
+  NewsFlag news_;
   bool robot_known_ = false;
   CueStatus robot_status_;
 };

@@ -11,6 +11,7 @@
 #include <ros/subscriber.h>
 
 #include "rviz_projector/core/stop_zone.h"
+#include "rviz_projector/displays/news_flag.h"
 #include "rviz_projector/displays/path_cue_source.h"
 #include "rviz_projector/displays/topic_subscription.h"
 #endif
@@ -38,12 +39,7 @@ public:
   /// Odometry messages taken so far (tests wait for theirs).
   std::size_t messages() const { return messages_; }
   /// Whether a message arrived since the last call (the picture may change at once).
-  bool takeNews()
-  {
-    const bool news = news_;
-    news_ = false;
-    return news;
-  }
+  bool takeNews() { return news_.take(); }
 
 private:
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
@@ -53,7 +49,7 @@ private:
   bool received_ = false;
   bool bad_twist_ = false;    // the last message's twist had NaN/Inf
   double last_arrival_ = 0.0; // ROS time of the last message
-  bool news_ = false;
+  NewsFlag news_;
   std::size_t messages_ = 0;
 };
 }  // namespace rviz_projector
