@@ -1,5 +1,6 @@
 # Build time only (CI's 25-minute budget): precompiled third-party headers. Included LAST from
-# CMakeLists.txt, once every target exists; it adds no target and changes no flag of its own.
+# CMakeLists.txt, once every target exists; it adds no target and changes no flag of its own (but
+# one: the users of test_core's header get its -O1 in the sanitizer build, see below).
 #
 # Parsing rviz, OGRE, Qt and ROS headers is most of the cost of each of our translation units.
 # A few precompiled headers, each built once per workspace, are shared by the targets:
@@ -81,6 +82,9 @@ foreach(target ${${PROJECT_NAME}_pch_targets})
     list(FIND links ${PROJECT_NAME}_core found)
     if(NOT found EQUAL -1)
       set(from test_core)
+      # The one flag this file sets: the sanitizer build compiles test_core at -O1 (CMakeLists.txt),
+      # and gcc refuses its header in a unit compiled otherwise ("__OPTIMIZE__ not defined").
+      target_compile_options(${target} PRIVATE ${${PROJECT_NAME}_SANITIZE_OPTIMIZE})
     endif()
   endif()
   get_target_property(own ${target} PRECOMPILE_HEADERS)
