@@ -42,7 +42,13 @@ void StopZoneSource::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
     filter_.clear();  // a later usable message starts afresh
     return;
   }
-  filter_.add(std::hypot(vx, vy), now);
+  // The filter runs on the odometry's own stamps: when the speed was measured, not when it arrived
+  // here (transport jitter shifts the bar; a bag replays the same stamps on every pass). A zero
+  // stamp, or one the clock makes implausible (older than kStaleAfter, or ahead of the clock by
+  // more than kStampAhead: an unsynchronised clock), takes the arrival time instead.
+  const double stamp = msg->header.stamp.toSec();
+  const bool stamp_usable = stamp > 0.0 && stamp <= now + kStampAhead && now - stamp <= kStaleAfter;
+  filter_.add(std::hypot(vx, vy), stamp_usable ? stamp : now);
 }
 
 SpeedEstimate StopZoneSource::speedAt(double now)

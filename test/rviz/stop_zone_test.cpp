@@ -82,11 +82,12 @@ protected:
 
   /// Odometry with the twist (vx, vy) in the robot's frame; returns once the display took it (its
   /// arrival time is the ROS time then: time may move on after this).
-  void publishOdometry(double vx, double vy = 0.0)
+  /// Odometry of (vx, vy) stamped `stamp` (default: now), once the display took it.
+  void publishOdometry(double vx, double vy = 0.0, ros::Time stamp = ros::Time::now())
   {
     const std::size_t before = path_->odometryMessages();
     nav_msgs::Odometry msg;
-    msg.header.stamp = ros::Time::now();
+    msg.header.stamp = stamp;
     msg.header.frame_id = "odom";
     msg.child_frame_id = "base_link";
     msg.pose.pose.orientation.w = 1.0;
@@ -202,6 +203,35 @@ TEST_F(StopZoneTest, BarSitsAtTheStoppingDistanceWithTheFloorFilledBeforeIt)
   const QImage blue = grabUntil([&](const QImage& image) { return sameColour(colourAt(image, {0.8, 0.2}), kZoneBlue, 30); });
   EXPECT_TRUE(sameColour(colourAt(blue, {0.8, 0.2}), kZoneBlue, 30));
   EXPECT_TRUE(sameColour(colourAt(blue, {0.8, 0.3}), kBlack, 20));
+}
+
+TEST_F(StopZoneTest, FiltersOnTheOdometrysStampsNotTheirArrival)
+{
+  // As a robot's odometry arrives: measured 0.2 s before it reaches rviz. Standing (0 m/s) from
+  // t = 1, then 1.2 m/s measured at t = 2.0, arriving at 2.2. On the stamps, at 2.2 the filter has
+  // had 0.2 s of the new speed: 1.2 (1 - exp(-0.2 / 0.3)). On the arrival it would still be 0.
+  at(1.0);
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  publishOdometry(0.0);
+  at(2.2);
+  publishOdometry(1.2, 0.0, start_ + ros::Duration(2.0));
+  const double v = 1.2 * (1.0 - std::exp(-0.2 / 0.3));
+  const double stop_x = kRobotX + stopDistance(v);
+  const QImage frame = barAt(stop_x);
+  EXPECT_LE(pixelDistance({lastX(frame, kOrange), kSide}, {stop_x, kSide}), 2.0)
+      << "v = " << v << " m/s on the stamps: bar at x = " << stop_x;
+  // A stamp the clock makes implausible (an hour ahead: an unsynchronised clock) counts from its
+  // arrival instead: at 2.6, 0.4 m/s "measured" then; 0.3 s later (one time constant) the speed
+  // is 0.4 + (v(2.6) - 0.4) exp(-1), where v(2.6) is the first step's filter 0.6 s on.
+  at(2.6);
+  publishOdometry(0.4, 0.0, start_ + ros::Duration(3600.0));
+  at(2.9);
+  const double v26 = 1.2 * (1.0 - std::exp(-0.6 / 0.3));
+  const double v29 = 0.4 + (v26 - 0.4) * std::exp(-1.0);
+  const double later_x = kRobotX + stopDistance(v29);
+  const QImage later = barAt(later_x);
+  EXPECT_LE(pixelDistance({lastX(later, kOrange), kSide}, {later_x, kSide}), 2.0)
+      << "v = " << v29 << " m/s from the arrival: bar at x = " << later_x;
 }
 
 TEST_F(StopZoneTest, NeverBeyondTheDestination)

@@ -23,6 +23,8 @@ class StopZoneSource
 public:
   /// Odometry older than this (ROS time since it arrived) is stale: no stop zone.
   static constexpr double kStaleAfter = 1.0;
+  /// A stamp at most this far ahead of the clock still counts as the speed's measurement time.
+  static constexpr double kStampAhead = 0.1;
 
   /// Subscribes to `topic` with `nh` (whose callback queue the display drains); empty: none. The
   /// same topic again changes nothing.
