@@ -226,7 +226,7 @@ void ProjectedPathDisplay::reset()
     ProjectionChangeNotifier::notify();
   }
   cue_source_.clear();
-  stop_source_.clear();
+  stop_source_.forgetLaterThan(RosClock::shared().policy().rosNow());
   corridor_source_.clear();
   off_view_source_.resetCue();  // the lens stays: a latched CameraInfo does not come again
   // rviz's Reset cleared every status: each is shown again when next worked out.
@@ -369,7 +369,7 @@ void ProjectedPathDisplay::drainQueue()
   if (epoch_.changed(RosClock::shared().tick()))
   {
     cue_source_.clear();
-    stop_source_.clear();
+    stop_source_.forgetLaterThan(RosClock::shared().policy().rosNow());
     off_view_source_.resetCue();
   }
   drain();

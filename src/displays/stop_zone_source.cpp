@@ -27,6 +27,14 @@ void StopZoneSource::clear()
   bad_twist_ = false;
 }
 
+void StopZoneSource::forgetLaterThan(double now)
+{
+  if (filter_.empty() || filter_.lastTime() > now)
+  {
+    clear();
+  }
+}
+
 void StopZoneSource::onOdometry(const nav_msgs::Odometry::ConstPtr& msg)
 {
   const double now = RosClock::shared().policy().rosNow();  // read by the display's drain, before this

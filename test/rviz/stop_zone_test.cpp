@@ -234,6 +234,32 @@ TEST_F(StopZoneTest, FiltersOnTheOdometrysStampsNotTheirArrival)
       << "v = " << v29 << " m/s from the arrival: bar at x = " << later_x;
 }
 
+TEST_F(StopZoneTest, AResetKeepsTheOdometryOfTheCurrentTimeLineAndAJumpBackForgetsIt)
+{
+  at(2.0);
+  ASSERT_TRUE(pathWithStopZone(2.5));
+  publishOdometry(0.8);
+  const double stop_x = kRobotX + stopDistance(0.8);
+  barAt(stop_x);
+  // rviz's Reset (rviz also resets at every backward jump of ROS time, at a moment of its own, after
+  // some of the new pass's odometry may have arrived): odometry measured at or before the clock's
+  // time stays, so the latched path comes back with the zone, without a new odometry message.
+  const std::size_t messages = path_->odometryMessages();
+  path_->reset();
+  const QImage after = barAt(stop_x);
+  EXPECT_LE(pixelDistance({lastX(after, kOrange), kSide}, {stop_x, kSide}), 2.0) << "the zone after Reset";
+  EXPECT_EQ(path_->odometryMessages(), messages) << "no new odometry was needed";
+  EXPECT_FALSE(statusOf(path_, "Stop zone").text.contains("No odometry")) << statusOf(path_, "Stop zone").text.toStdString();
+  // ROS time jumping back (a bag loop) forgets what was measured after the new time.
+  at(1.0);
+  EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Stop zone").text.contains("No odometry received yet"); }))
+      << statusOf(path_, "Stop zone").text.toStdString();
+  publishOdometry(0.4);  // the new time line's first measurement, taken as it is
+  const double slower_x = kRobotX + stopDistance(0.4);
+  const QImage slower = barAt(slower_x);
+  EXPECT_LE(pixelDistance({lastX(slower, kOrange), kSide}, {slower_x, kSide}), 2.0) << "the new pass's speed alone";
+}
+
 TEST_F(StopZoneTest, NeverBeyondTheDestination)
 {
   ASSERT_TRUE(pathWithStopZone(1.5));  // destination circle (0.2 m) at x 1.5, in view

@@ -51,6 +51,8 @@ public:
   SpeedEstimate at(double time);
   void clear();
   bool empty() const { return !has_value_; }
+  /// The time of the last measurement (meaningless while empty()).
+  double lastTime() const { return time_; }
 
 private:
   double valueAt(double time) const;

@@ -32,6 +32,10 @@ public:
   void unsubscribe();
   /// Forgets the speed (rviz's Reset, a backward jump of ROS time).
   void clear();
+  /// rviz's Reset, or ROS time jumping back (a bag loop): forgets odometry measured after `now`
+  /// (of before the jump) and keeps what was measured on the current time line, so the filter
+  /// does not depend on which of the new pass's messages arrived before the reset did.
+  void forgetLaterThan(double now);
 
   /// The filtered speed at `now` (ROS time, seconds); standing (no zone) without fresh, usable
   /// odometry.
