@@ -14,7 +14,7 @@
 # Run through `scripts/test --soak [--soak-minutes N]` (builds first), or directly with a built
 # workspace: RP_WS=<workspace with projector_host and demo_navigation built>.
 # Environment: SOAK_OUTPUT (folder for the logs, default $RP_WS/soak-<time>), SOAK_WARMUP_SECONDS
-# (60), SOAK_SAMPLE_SECONDS (5), SOAK_RSS_LIMIT_MB (2), SOAK_CONFIG (default rviz/demo.rviz),
+# (60, and at least two reload periods + 10 s), SOAK_SAMPLE_SECONDS (5), SOAK_RSS_LIMIT_MB (2), SOAK_CONFIG (default rviz/demo.rviz),
 # SOAK_HEAPTRACK=1 (run the host under heaptrack, Debian package heaptrack, to find where memory
 # grows: `heaptrack_print -f $SOAK_OUTPUT/heaptrack.zst`; RSS then includes heaptrack's own).
 set -euo pipefail
@@ -51,7 +51,9 @@ set -u
 out="${SOAK_OUTPUT:-$RP_WS/soak-$(date +%Y%m%d-%H%M%S)}"
 mkdir -p "$out"
 config="${SOAK_CONFIG:-$ROOT/rviz/demo.rviz}"
-warmup="${SOAK_WARMUP_SECONDS:-60}"
+# Warm-up: 60 s, and at least two reloads: the first reloads raise the allocator's high-water mark
+# (freed memory glibc keeps), measured flat afterwards (doc/bench/soak-host.txt).
+warmup="${SOAK_WARMUP_SECONDS:-$(awk -v r="$reload_seconds" 'BEGIN { w = 2 * r + 10; print (w > 60 ? w : 60) }')}"
 sample="${SOAK_SAMPLE_SECONDS:-5}"
 
 # shellcheck source=../../scripts/lib/xserver.sh
