@@ -30,7 +30,7 @@ public:
   /// same topic again changes nothing.
   void subscribe(ros::NodeHandle& nh, const std::string& topic);
   void unsubscribe();
-  /// Forgets the speed (rviz's Reset, a backward jump of ROS time).
+  /// Forgets the speed and every message (a new topic; forgetLaterThan below for Reset and jumps).
   void clear();
   /// rviz's Reset, or ROS time jumping back (a bag loop): forgets odometry measured after `now`
   /// (of before the jump) and keeps what was measured on the current time line, so the filter
