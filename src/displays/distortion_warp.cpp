@@ -1,10 +1,15 @@
 #include "rviz_projector/displays/distortion_warp.h"
 
+#include <cstdlib>
+
 #include <OgreCamera.h>
 #include <OgreHardwarePixelBuffer.h>
 #include <OgreManualObject.h>
 #include <OgreMaterialManager.h>
 #include <OgrePass.h>
+#include <OgrePixelFormat.h>
+#include <OgreRenderSystem.h>
+#include <OgreRenderSystemCapabilities.h>
 #include <OgreRenderTexture.h>
 #include <OgreResourceGroupManager.h>
 #include <OgreRoot.h>
@@ -31,6 +36,7 @@ DistortionWarp::DistortionWarp(Ogre::Camera* scene_camera, Ogre::RenderTargetLis
 {
   material_ = createImageSpaceMaterial("rviz_projector_warp_material_");
   useImageSpace(mesh_);
+  mesh_->setDynamic(true);  // rewritten every frame when only occupied cells are drawn
   warp_scene_->getRootSceneNode()->attachObject(mesh_);
 }
 
@@ -47,6 +53,14 @@ DistortionWarp::~DistortionWarp()
 void DistortionWarp::clear()
 {
   mesh_->clear();
+  mesh_->setVisible(true);
+  mesh_written_ = false;
+  scan_.reset();
+  pixels_.clear();
+  occupied_.clear();
+  cells_drawn_ = 0;
+  cells_ = WarpCells::All;
+  cells_note_.clear();
   if (render_texture_)
   {
     render_texture_->removeListener(listener_);
@@ -73,6 +87,8 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
     return std::string();
   }
   grid_ = makeWarpGrid(raw_lens, distortion);
+  raw_width_ = raw_lens.width();
+  raw_height_ = raw_lens.height();
   grid_error_ = warpGridError(grid_, raw_lens, distortion);
   const PinholeModel& ideal = grid_.ideal_lens;
   try
@@ -102,19 +118,42 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
   unit->setTextureFiltering(Ogre::TFO_BILINEAR);
   unit->setNumMipmaps(0);
 
+  const char* setting = std::getenv("RVIZ_PROJECTOR_WARP_CELLS");
+  const Ogre::RenderSystem* render_system = Ogre::Root::getSingleton().getRenderSystem();
+  const std::string renderer = render_system && render_system->getCapabilities() ?
+                                   render_system->getCapabilities()->getDeviceName() :
+                                   std::string();
+  cells_ = chooseWarpCells(setting ? setting : "", renderer, &cells_note_);
+  if (cells_ == WarpCells::Occupied)
+  {
+    scan_ = std::make_unique<WarpCellScan>(grid_);
+  }
+  writeMesh(nullptr);
+  return std::string();
+}
+
+void DistortionWarp::writeMesh(const std::vector<std::uint8_t>* occupied)
+{
   // The cells: raw pixel edges -> normalised device coordinates of the output viewport (which
   // holds the raw image exactly); each vertex samples the ideal render where its ray lands.
-  const double w = raw_lens.width();
-  const double h = raw_lens.height();
-  mesh_->estimateVertexCount(grid_.raw.size());
-  mesh_->estimateIndexCount(6 * grid_.columns * grid_.rows);
-  mesh_->begin(material_->getName(), Ogre::RenderOperation::OT_TRIANGLE_LIST,
-               Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  const double raw_w = raw_width_;
+  const double raw_h = raw_height_;
+  if (mesh_written_)
+  {
+    mesh_->beginUpdate(0);
+  }
+  else
+  {
+    mesh_->estimateVertexCount(grid_.raw.size());
+    mesh_->estimateIndexCount(6 * grid_.columns * grid_.rows);
+    mesh_->begin(material_->getName(), Ogre::RenderOperation::OT_TRIANGLE_LIST,
+                 Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+  }
   for (std::size_t v = 0; v < grid_.raw.size(); ++v)
   {
     const Vec2& p = grid_.raw[v];
-    mesh_->position(static_cast<Ogre::Real>(2.0 * (p.x + 0.5) / w - 1.0),
-                    static_cast<Ogre::Real>(1.0 - 2.0 * (p.y + 0.5) / h), 0.0f);
+    mesh_->position(static_cast<Ogre::Real>(2.0 * (p.x + 0.5) / raw_w - 1.0),
+                    static_cast<Ogre::Real>(1.0 - 2.0 * (p.y + 0.5) / raw_h), 0.0f);
     const Vec2 t = grid_.textureCoordinate(v);
     mesh_->textureCoord(static_cast<Ogre::Real>(t.x), static_cast<Ogre::Real>(t.y));
   }
@@ -122,6 +161,10 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
   {
     for (std::uint32_t i = 0; i < grid_.columns; ++i)
     {
+      if (occupied && !(*occupied)[std::size_t(j) * grid_.columns + i])
+      {
+        continue;
+      }
       const auto a = static_cast<Ogre::uint32>(grid_.vertexIndex(i, j));
       const auto b = static_cast<Ogre::uint32>(grid_.vertexIndex(i + 1, j));
       const auto c = static_cast<Ogre::uint32>(grid_.vertexIndex(i, j + 1));
@@ -131,9 +174,45 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
     }
   }
   mesh_->end();
-  mesh_->setBoundingBox(Ogre::AxisAlignedBox::BOX_INFINITE);  // in image space: never culled
-  return std::string();
+  if (!mesh_written_)
+  {
+    mesh_->setBoundingBox(Ogre::AxisAlignedBox::BOX_INFINITE);  // in image space: never culled
+  }
+  mesh_written_ = true;
+  cells_drawn_ = occupied ? cells_drawn_ : std::size_t(grid_.columns) * grid_.rows;
 }
+
+void DistortionWarp::drawOccupiedCells()
+{
+  const std::uint32_t w = grid_.ideal_lens.width();
+  const std::uint32_t h = grid_.ideal_lens.height();
+  const Ogre::PixelFormat format = texture_->getFormat();
+  std::size_t count = occupied_.size();
+  if (Ogre::PixelUtil::getNumElemBytes(format) == 4 && w > 0 && h > 0)
+  {
+    pixels_.resize(std::size_t(w) * h);
+    const Ogre::PixelBox box(w, h, 1, format, pixels_.data());
+    texture_->getBuffer()->blitToMemory(box);
+    // The background and the colour bits in the texture's own layout (alpha is not shown).
+    std::uint32_t background = 0;
+    std::uint32_t colour_bits = 0;
+    Ogre::PixelUtil::packColour(background_.r, background_.g, background_.b, 0.0f, format, &background);
+    Ogre::PixelUtil::packColour(1.0f, 1.0f, 1.0f, 0.0f, format, &colour_bits);
+    count = scan_->scan(pixels_.data(), w, h, w, background, colour_bits, occupied_);
+  }
+  else
+  {
+    occupied_.assign(std::size_t(grid_.columns) * grid_.rows, 1);  // not a 32-bit picture: every cell
+    count = occupied_.size();
+  }
+  cells_drawn_ = count;
+  mesh_->setVisible(count > 0);
+  if (count > 0)
+  {
+    writeMesh(&occupied_);
+  }
+}
+
 
 void DistortionWarp::setBackground(const Ogre::ColourValue& colour)
 {
@@ -158,6 +237,10 @@ void DistortionWarp::renderIdeal()
   if (render_texture_)
   {
     render_texture_->update(false);
+    if (cells_ == WarpCells::Occupied)
+    {
+      drawOccupiedCells();
+    }
   }
 }
 }  // namespace rviz_projector

@@ -322,12 +322,17 @@ void ProjectorCameraDisplay::updateWarp()
   }
   else if (warp_->active())
   {
-    setStatus(rviz::StatusProperty::Ok, "Distortion",
-              QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)")
+    const QString cells = warp_->cells() == WarpCells::Occupied ?
+                              QString("; only its cells with something on them are drawn") :
+                              QString();
+    const QString note = warp_->cellsNote().empty() ? QString() : QString(" (%1)").arg(warp_->cellsNote().c_str());
+    setStatus(warp_->cellsNote().empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Distortion",
+              QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)%5%6")
                   .arg(drawn)
                   .arg(warp_->grid().columns)
                   .arg(warp_->grid().rows)
-                  .arg(warp_->gridError(), 0, 'f', 3));
+                  .arg(warp_->gridError(), 0, 'f', 3)
+                  .arg(cells, note));
   }
 }
 

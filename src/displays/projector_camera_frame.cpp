@@ -180,11 +180,12 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
                          : warped          ? warp_->warpCamera()
                                            : view_->camera();
   const bool drawable = hasLens() && pipeline_.poseOk();
-  // The warp's mesh covers every pixel of the viewport (its outer vertices lie on the viewport's
-  // edges) and tests no depth: clearing the window before it only cost a pass over its colour and
-  // depth (and ~200 KB of the GL driver's allocations per frame, scripts/bench --alloc). Without a
-  // pose the mesh is hidden and the clear blanks the window.
-  const bool mesh_covers = warped && drawable;
+  // The warp's whole mesh covers every pixel of the viewport (its outer vertices lie on the
+  // viewport's edges) and tests no depth: clearing the window before it only cost a pass over its
+  // colour and depth (and ~200 KB of the GL driver's allocations per frame, scripts/bench --alloc).
+  // Only its occupied cells (software renderer) leave the rest to the clear. Without a pose the
+  // mesh is hidden and the clear blanks the window.
+  const bool mesh_covers = warped && drawable && warp_->coversWindow();
   if (Ogre::Viewport* viewport = output_->viewport())
   {
     if (viewport->getCamera() != camera)

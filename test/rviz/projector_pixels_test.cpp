@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <QColor>
@@ -33,6 +35,7 @@ using rviz_projector_test::ProjectorSceneTest;
 using rviz_projector_test::Letterbox;
 using rviz_projector_test::Mount;
 using rviz_projector_test::projectorInfo;
+using rviz_projector_test::saveShot;
 using rviz_projector_test::ProjectorCameraTest;
 using rviz_projector_test::Vec2;
 
@@ -383,4 +386,68 @@ TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
   EXPECT_EQ(count(no_pose, isBlack), no_pose.width() * no_pose.height())
       << "without a pose the window is blanked: " << no_pose.width() * no_pose.height() - count(no_pose, isBlack)
       << " pixels left from the earlier frame";
+}
+
+// Issue 24, the warp's cost on a software renderer: only the cells with something on them are
+// drawn (into a window cleared to the background). The picture must be the one the whole mesh
+// draws, pixel for pixel: twenty targets spread over the image, through the wide-angle lens, drawn
+// once with every cell (RVIZ_PROJECTOR_WARP_CELLS=all: the path whose accuracy the tests above
+// measure against cv::projectPoints) and once with the occupied cells only.
+TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIsTheWholeMeshs)
+{
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
+  const PixelOracle oracle(info, down);
+  mount(down);
+  for (int j = 0; j < 4; ++j)
+  {
+    for (int i = 0; i < 5; ++i)
+    {
+      const Vec2 floor = oracle.floorPoint({77.0 + 283.0 * i, 56.0 + 229.0 * j});
+      addTarget(floor, 30.0 * oracle.depth(floor) / oracle.fx());
+    }
+  }
+  auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
+  auto greenCount = [&](const QImage& image) {
+    int n = 0;
+    for (int y = 0; y < image.height(); ++y)
+    {
+      for (int x = 0; x < image.width(); ++x)
+      {
+        n += isGreen(image.pixel(x, y)) ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  // Shown through the lens with `cells` ("all" or "occupied"); the image part once every target is.
+  auto showWith = [&](const char* cells) {
+    setenv("RVIZ_PROJECTOR_WARP_CELLS", cells, 1);
+    info_pub_.publish(projectorInfo(1280, 800, 1900, 639.5, 399.5));  // no D: the warp is released
+    EXPECT_TRUE(waitFor([&] { return projector_->hasLens() && !statusOf(projector_, "Distortion").present; }));
+    info_pub_.publish(info);  // the lens again: the warp made anew with `cells`
+    const bool occupied = std::string(cells) == "occupied";
+    EXPECT_TRUE(waitFor([&] {
+      const auto s = statusOf(projector_, "Distortion");
+      return s.present && s.text.contains("warp") && s.text.contains("only its cells") == occupied;
+    })) << statusOf(projector_, "Distortion").text.toStdString();
+    EXPECT_TRUE(waitFor([&] { return targetsReady() && projector_->outputWindow() &&
+                                     projector_->outputWindow()->isVisible(); }));
+    return imagePart(grabWhen([&](const QImage& f) { return greenCount(imagePart(f, oracle)) > 20 * 400; }), oracle);
+  };
+  const QImage whole = showWith("all");
+  const QImage occupied = showWith("occupied");
+  unsetenv("RVIZ_PROJECTOR_WARP_CELLS");
+  ASSERT_FALSE(whole.isNull());
+  ASSERT_EQ(whole.size(), occupied.size());
+  ASSERT_GT(greenCount(whole), 20 * 400) << "the targets are shown";
+  int differ = 0;
+  for (int y = 0; y < whole.height(); ++y)
+  {
+    for (int x = 0; x < whole.width(); ++x)
+    {
+      differ += whole.pixel(x, y) != occupied.pixel(x, y) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(differ, 0) << "pixels that differ between the whole mesh and its occupied cells";
+  saveShot(occupied, "warp_occupied_cells");
 }

@@ -1,0 +1,152 @@
+#include "rviz_projector/core/warp_cells.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+namespace rviz_projector
+{
+namespace
+{
+std::uint32_t clampIndex(double v, std::uint32_t size)
+{
+  if (!(v > 0.0))  // NaN too: the whole range stays reachable through the other end
+  {
+    return 0;
+  }
+  return v >= double(size) ? size : static_cast<std::uint32_t>(v);
+}
+
+std::string lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+}  // namespace
+
+std::vector<CellFootprint> cellFootprints(const WarpGrid& grid)
+{
+  std::vector<CellFootprint> cells;
+  const std::uint32_t w = grid.ideal_lens.width();
+  const std::uint32_t h = grid.ideal_lens.height();
+  cells.reserve(std::size_t(grid.columns) * grid.rows);
+  for (std::uint32_t j = 0; j < grid.rows; ++j)
+  {
+    for (std::uint32_t i = 0; i < grid.columns; ++i)
+    {
+      double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
+      double max_x = -min_x, max_y = -min_x;
+      for (const std::size_t v : {grid.vertexIndex(i, j), grid.vertexIndex(i + 1, j), grid.vertexIndex(i, j + 1),
+                                  grid.vertexIndex(i + 1, j + 1)})
+      {
+        min_x = std::min(min_x, grid.ideal[v].x);
+        max_x = std::max(max_x, grid.ideal[v].x);
+        min_y = std::min(min_y, grid.ideal[v].y);
+        max_y = std::max(max_y, grid.ideal[v].y);
+      }
+      // Texel centres at integers: a sample at p reads floor(p) and floor(p) + 1; one more each side.
+      CellFootprint f;
+      f.x0 = clampIndex(std::floor(min_x) - 1.0, w);
+      f.y0 = clampIndex(std::floor(min_y) - 1.0, h);
+      f.x1 = clampIndex(std::floor(max_x) + 3.0, w);
+      f.y1 = clampIndex(std::floor(max_y) + 3.0, h);
+      // Clamp-to-edge addressing: a cell beyond the image reads its edge texels.
+      if (w > 0 && h > 0)
+      {
+        f.x0 = std::min(f.x0, w - 1);
+        f.y0 = std::min(f.y0, h - 1);
+        f.x1 = std::max(f.x1, f.x0 + 1);
+        f.y1 = std::max(f.y1, f.y0 + 1);
+      }
+      cells.push_back(f);
+    }
+  }
+  return cells;
+}
+
+WarpCellScan::WarpCellScan(const WarpGrid& grid)
+  : footprints_(cellFootprints(grid))
+  , width_(grid.ideal_lens.width())
+  , height_(grid.ideal_lens.height())
+  , blocks_x_((width_ + kBlock - 1) / kBlock)
+  , blocks_y_((height_ + kBlock - 1) / kBlock)
+  , blocks_(std::size_t(blocks_x_) * blocks_y_, 0)
+{
+}
+
+std::size_t WarpCellScan::scan(const std::uint32_t* pixels, std::uint32_t width, std::uint32_t height,
+                               std::size_t stride, std::uint32_t background, std::uint32_t mask,
+                               std::vector<std::uint8_t>& occupied)
+{
+  if (pixels == nullptr || width != width_ || height != height_ || stride < width)
+  {
+    occupied.assign(footprints_.size(), 1);
+    return footprints_.size();
+  }
+  const std::uint32_t reference = background & mask;
+  std::fill(blocks_.begin(), blocks_.end(), 0);
+  for (std::uint32_t y = 0; y < height; ++y)
+  {
+    const std::uint32_t* row = pixels + std::size_t(y) * stride;
+    std::uint8_t* block_row = blocks_.data() + std::size_t(y / kBlock) * blocks_x_;
+    for (std::uint32_t bx = 0; bx < blocks_x_; ++bx)
+    {
+      if (block_row[bx])
+      {
+        continue;
+      }
+      const std::uint32_t x0 = bx * kBlock;
+      const std::uint32_t x1 = std::min(x0 + kBlock, width);
+      std::uint32_t differs = 0;
+      for (std::uint32_t x = x0; x < x1; ++x)
+      {
+        differs |= (row[x] & mask) ^ reference;
+      }
+      block_row[bx] = differs != 0 ? 1 : 0;
+    }
+  }
+  occupied.assign(footprints_.size(), 0);
+  std::size_t count = 0;
+  for (std::size_t c = 0; c < footprints_.size(); ++c)
+  {
+    const CellFootprint& f = footprints_[c];
+    bool any = false;
+    for (std::uint32_t by = f.y0 / kBlock; by <= (f.y1 - 1) / kBlock && !any; ++by)
+    {
+      for (std::uint32_t bx = f.x0 / kBlock; bx <= (f.x1 - 1) / kBlock; ++bx)
+      {
+        if (blocks_[std::size_t(by) * blocks_x_ + bx])
+        {
+          any = true;
+          break;
+        }
+      }
+    }
+    occupied[c] = any ? 1 : 0;
+    count += any ? 1 : 0;
+  }
+  return count;
+}
+
+WarpCells chooseWarpCells(const std::string& setting, const std::string& renderer, std::string* error)
+{
+  const std::string s = lower(setting);
+  if (s == "all")
+  {
+    return WarpCells::All;
+  }
+  if (s == "occupied")
+  {
+    return WarpCells::Occupied;
+  }
+  if (!s.empty() && s != "auto" && error)
+  {
+    *error = "RVIZ_PROJECTOR_WARP_CELLS='" + setting + "' is not one of all, occupied, auto: auto is used";
+  }
+  const std::string r = lower(renderer);
+  const bool software = r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
+                        r.find("swrast") != std::string::npos || r.find("software rasterizer") != std::string::npos;
+  return software ? WarpCells::Occupied : WarpCells::All;
+}
+}  // namespace rviz_projector
