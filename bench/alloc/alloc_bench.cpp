@@ -15,7 +15,11 @@
 //   frame-clock  the display's per-tick bookkeeping (ProjectorFrameClock::frameDone: the frame
 //                rate meter's sample), outside renderNow()
 //   same-scene-warped, driving-warped  (issue 24) the same through a wide-angle lens (k1 = -0.2,
-//                k2 = 0.05): the ideal view rendered to a texture and warped into the window
+//                k2 = 0.05): the ideal view rendered to a texture and warped into the window,
+//                the warp's cells chosen as the renderer makes them (auto: on llvmpipe only the
+//                cells with something on them, read back from the ideal render)
+//   same-scene-warped-all, driving-warped-all  the same with every cell of the warp drawn
+//                (RVIZ_PROJECTOR_WARP_CELLS=all: what a GPU does)
 // and the process RSS before and after the N frames of each, and the wall time of the measured
 // call per frame (median, 95th percentile) and its CPU time (median; the whole process: llvmpipe
 // shades on threads of its own): the warp's cost is the warped row minus the same row without D,
@@ -386,11 +390,10 @@ int main(int argc, char** argv)
   std::uint64_t ticks = 0;
   run("frame-clock", [](int) {}, [&] { clock.frameDone(++ticks, false); });
 
-  // Issue 24: the same through a wide-angle lens (the warp: texture + mesh pass).
-  info.D = { -0.2, 0.05, 0, 0, 0 };
-  info_pub.publish(info);
-  // The projector says it draws through the lens: its "Distortion" status, at level Ok.
-  auto warped = [&] {
+  // Issue 24: the same through a wide-angle lens (the warp: texture + mesh pass), first with every
+  // cell of the mesh drawn, then as the renderer makes it (auto).
+  // The projector says it draws through the lens: its "Distortion" status (null when absent).
+  auto distortionStatus = [&]() -> rviz::StatusProperty* {
     for (int i = 0; i < projector->numChildren(); ++i)
     {
       if (auto* list = dynamic_cast<rviz::StatusList*>(projector->childAt(i)))
@@ -400,23 +403,44 @@ int main(int argc, char** argv)
           auto* status = dynamic_cast<rviz::StatusProperty*>(list->childAt(j));
           if (status && status->getName() == "Distortion")
           {
-            return status->getLevel() == rviz::StatusProperty::Ok;
+            return status;
           }
         }
       }
     }
-    return false;
+    return nullptr;
   };
-  if (!waitFor(warped, 5.0))
+  const sensor_msgs::CameraInfo plain = info;
+  for (const char* cells : {"all", "auto"})
   {
-    std::fprintf(stderr, "alloc_bench: the projector does not draw through the distorted lens\n");
-    return 1;
+    info_pub.publish(plain);  // no D: the warp released, made anew below with `cells`
+    if (!waitFor([&] { return distortionStatus() == nullptr; }, 5.0))
+    {
+      std::fprintf(stderr, "alloc_bench: the projector still draws through a lens without D\n");
+      return 1;
+    }
+    setenv("RVIZ_PROJECTOR_WARP_CELLS", cells, 1);
+    info.D = { -0.2, 0.05, 0, 0, 0 };
+    info_pub.publish(info);
+    auto warped = [&] {
+      const rviz::StatusProperty* status = distortionStatus();
+      return status && status->getLevel() == rviz::StatusProperty::Ok;
+    };
+    if (!waitFor(warped, 5.0))
+    {
+      std::fprintf(stderr, "alloc_bench: the projector does not draw through the distorted lens\n");
+      return 1;
+    }
+    std::fprintf(stderr, "alloc_bench: %s\n", distortionStatus()->getValue().toString().toStdString().c_str());
+    spin(1.0);
+    const std::string suffix = std::string(cells) == "all" ? "-all" : "";
+    projector->subProp("Frame")->setValue("alloc_bench_fixed");
+    run(("same-scene-warped" + suffix).c_str(), [](int) { rviz_projector::ProjectionChangeCounter::bump(); },
+        render_now);
+    projector->subProp("Frame")->setValue("alloc_bench_driving");
+    run(("driving-warped" + suffix).c_str(), drive, render_now);
   }
-  spin(1.0);
-  projector->subProp("Frame")->setValue("alloc_bench_fixed");
-  run("same-scene-warped", [](int) { rviz_projector::ProjectionChangeCounter::bump(); }, render_now);
-  projector->subProp("Frame")->setValue("alloc_bench_driving");
-  run("driving-warped", drive, render_now);
+  unsetenv("RVIZ_PROJECTOR_WARP_CELLS");
 
   delete manager;
   delete panel;
