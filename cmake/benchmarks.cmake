@@ -25,6 +25,7 @@ if(benchmark_FOUND)
     bench/micro/micro_benchmarks.cpp
     bench/micro/off_view_benchmarks.cpp
     bench/micro/reference_baseline.cpp
+    bench/micro/warp_benchmarks.cpp
   )
   set_target_properties(${PROJECT_NAME}_microbench PROPERTIES AUTOMOC OFF)
   target_include_directories(${PROJECT_NAME}_microbench PRIVATE bench/micro test/support)
