@@ -3,7 +3,6 @@
 //   rosrun rviz_projector projector_host [--watch] CONFIG.rviz
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <sys/socket.h>
@@ -91,11 +90,6 @@ int main(int argc, char** argv)
     return kHostExitNoDisplay;
   }
 
-  // Without a GPU (Mesa's llvmpipe) one rasteriser thread, unless LP_NUM_THREADS says otherwise:
-  // the projector's frames are small jobs, and handing each pass to other threads and back cost
-  // more CPU than it saved (demo scene with everything on, 60 frames/s: 0.40 -> 0.31 cores, path
-  // to photon +1.6 ms; doc/dev/performance.md). GPU drivers ignore it. Before any GL is loaded.
-  setenv("LP_NUM_THREADS", "1", 0);
   installSignalHandlers();
   QApplication app(argc, argv);
   app.setQuitOnLastWindowClosed(false);  // windows come and go on reload; the host runs until told

@@ -396,26 +396,6 @@ class HostTest(unittest.TestCase):
         self.publish_path()
         self.assertIsNotNone(self.wait_colour(host.pid, MAGENTA), "a new path did not bring the arrows back")
 
-    def test_one_software_rasteriser_thread_unless_told(self):
-        # Without a GPU the host renders with one llvmpipe thread (LP_NUM_THREADS=1 by default; the
-        # CPU it saves: doc/dev/performance.md); a value in the environment wins. Oracle: the names
-        # of the process's threads (Mesa names its rasteriser threads llvmpipe-N).
-        def rasterisers(pid):
-            names = []
-            for task in os.listdir("/proc/%d/task" % pid):
-                try:
-                    with open("/proc/%d/task/%s/comm" % (pid, task)) as f:
-                        names.append(f.read().strip())
-                except OSError:
-                    pass  # the thread ended meanwhile
-            return sorted(n for n in names if n.startswith("llvmpipe-"))
-        for env, expected in (({"LP_NUM_THREADS": None}, ["llvmpipe-0"]),
-                              ({"LP_NUM_THREADS": "2"}, ["llvmpipe-0", "llvmpipe-1"])):
-            host = self.start_host(os.path.join(CONFIGS, "host.rviz"), env_changes=env)
-            self.assertIsNotNone(self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT), "no arrows (%s)" % env)
-            self.assertEqual(rasterisers(host.pid), expected, env)
-            host.stop()
-
     def test_renders_only_on_change(self):
         self.check_renders_only_on_change(os.path.join(CONFIGS, "host.rviz"), 1)
 
