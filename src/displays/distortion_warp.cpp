@@ -58,7 +58,6 @@ void DistortionWarp::clear()
   scan_.reset();
   pixels_.clear();
   occupied_.clear();
-  cells_drawn_ = 0;
   cells_ = WarpCells::All;
   cells_note_.clear();
   if (render_texture_)
@@ -124,6 +123,10 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
                                    render_system->getCapabilities()->getDeviceName() :
                                    std::string();
   cells_ = chooseWarpCells(setting ? setting : "", renderer, &cells_note_);
+  if (cells_ == WarpCells::Occupied && Ogre::PixelUtil::getNumElemBytes(texture_->getFormat()) != 4)
+  {
+    cells_ = WarpCells::All;  // the scan reads 32-bit pixels: any other texture draws every cell
+  }
   if (cells_ == WarpCells::Occupied)
   {
     scan_ = std::make_unique<WarpCellScan>(grid_);
@@ -179,40 +182,27 @@ void DistortionWarp::writeMesh(const std::vector<std::uint8_t>* occupied)
     mesh_->setBoundingBox(Ogre::AxisAlignedBox::BOX_INFINITE);  // in image space: never culled
   }
   mesh_written_ = true;
-  cells_drawn_ = occupied ? cells_drawn_ : std::size_t(grid_.columns) * grid_.rows;
 }
 
 void DistortionWarp::drawOccupiedCells()
 {
   const std::uint32_t w = grid_.ideal_lens.width();
   const std::uint32_t h = grid_.ideal_lens.height();
-  const Ogre::PixelFormat format = texture_->getFormat();
-  std::size_t count = occupied_.size();
-  if (Ogre::PixelUtil::getNumElemBytes(format) == 4 && w > 0 && h > 0)
-  {
-    pixels_.resize(std::size_t(w) * h);
-    const Ogre::PixelBox box(w, h, 1, format, pixels_.data());
-    texture_->getBuffer()->blitToMemory(box);
-    // The background and the colour bits in the texture's own layout (alpha is not shown).
-    std::uint32_t background = 0;
-    std::uint32_t colour_bits = 0;
-    Ogre::PixelUtil::packColour(background_.r, background_.g, background_.b, 0.0f, format, &background);
-    Ogre::PixelUtil::packColour(1.0f, 1.0f, 1.0f, 0.0f, format, &colour_bits);
-    count = scan_->scan(pixels_.data(), w, h, w, background, colour_bits, occupied_);
-  }
-  else
-  {
-    occupied_.assign(std::size_t(grid_.columns) * grid_.rows, 1);  // not a 32-bit picture: every cell
-    count = occupied_.size();
-  }
-  cells_drawn_ = count;
+  const Ogre::PixelFormat format = texture_->getFormat();  // 32-bit (configure())
+  pixels_.resize(std::size_t(w) * h);
+  texture_->getBuffer()->blitToMemory(Ogre::PixelBox(w, h, 1, format, pixels_.data()));
+  // The background and the colour bits in the texture's own layout (alpha is not shown).
+  std::uint32_t background = 0;
+  std::uint32_t colour_bits = 0;
+  Ogre::PixelUtil::packColour(background_.r, background_.g, background_.b, 0.0f, format, &background);
+  Ogre::PixelUtil::packColour(1.0f, 1.0f, 1.0f, 0.0f, format, &colour_bits);
+  const std::size_t count = scan_->scan(pixels_.data(), w, h, w, background, colour_bits, occupied_);
   mesh_->setVisible(count > 0);
   if (count > 0)
   {
     writeMesh(&occupied_);
   }
 }
-
 
 void DistortionWarp::setBackground(const Ogre::ColourValue& colour)
 {

@@ -45,8 +45,6 @@ public:
   std::size_t scan(const std::uint32_t* pixels, std::uint32_t width, std::uint32_t height, std::size_t stride,
                    std::uint32_t background, std::uint32_t mask, std::vector<std::uint8_t>& occupied);
 
-  std::size_t cellCount() const { return footprints_.size(); }
-
 private:
   std::vector<CellFootprint> footprints_;
   std::uint32_t width_ = 0, height_ = 0;

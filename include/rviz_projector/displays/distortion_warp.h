@@ -59,12 +59,11 @@ public:
   double gridError() const { return grid_error_; }
   /// The camera that draws the warped picture (into the output window's viewport).
   Ogre::Camera* warpCamera() const { return warp_camera_; }
-  /// Every cell or only those with something on them (chosen in configure()).
+  /// Every cell or only those with something on them (chosen in configure(): only those on a
+  /// software renderer, when the texture's pixels are 32-bit).
   WarpCells cells() const { return cells_; }
   /// The mesh draws every pixel of the window (the window need not be cleared before it).
   bool coversWindow() const { return active() && cells_ == WarpCells::All; }
-  /// Cells drawn in the last frame (all of them when every cell is drawn).
-  std::size_t cellsDrawn() const { return cells_drawn_; }
   /// A note on the choice of cells for the status (e.g. an unknown RVIZ_PROJECTOR_WARP_CELLS).
   const std::string& cellsNote() const { return cells_note_; }
 
@@ -97,7 +96,6 @@ private:
   std::unique_ptr<WarpCellScan> scan_;
   std::vector<std::uint32_t> pixels_;    // the ideal render read back (occupied cells only)
   std::vector<std::uint8_t> occupied_;  // per cell
-  std::size_t cells_drawn_ = 0;
   bool mesh_written_ = false;
   std::uint32_t raw_width_ = 1, raw_height_ = 1;  // the raw image the mesh spans
 };
