@@ -26,6 +26,24 @@ def text_lines(text):
     return lines
 
 
+DETAIL_LINES = 120
+DETAIL_LINE_CHARS = 400
+
+
+def detail_lines(problem):
+    """The failure's message and text (the message attribute alone is often cut), at most
+    DETAIL_LINES lines of at most DETAIL_LINE_CHARS characters, duplicates of the message dropped."""
+    message = (problem.get("message") or "").strip()
+    body = (problem.text or "").strip()
+    text = message if not body or body == message else (message + "\n" + body if message not in body else body)
+    lines = [l.rstrip() for l in text.splitlines() if l.strip()]
+    cut = len(lines) - DETAIL_LINES
+    lines = [l if len(l) <= DETAIL_LINE_CHARS else l[:DETAIL_LINE_CHARS] + " [...]" for l in lines[:DETAIL_LINES]]
+    if cut > 0:
+        lines.append("[... %d more lines in the result file]" % cut)
+    return lines
+
+
 def skip_reason(case):
     """Reason of a skipped test case, or None when it ran."""
     for child in case:
@@ -62,6 +80,7 @@ def main():
     expected = sys.argv[2:]
     passed = failed = skipped = 0
     failures = []
+    details = []
     skips = []
     seen = set()
     node_cases = rosunit_cases(root_dir)
@@ -89,6 +108,7 @@ def main():
                     failed += 1
                     text = text_lines(problems[0].get("message") or problems[0].text)
                     failures.append("%s: %s" % (label, " | ".join(text[:3])[:300] if text else problems[0].tag))
+                    details.append((label, detail_lines(problems[0])))
                     continue
                 if summary_file and (key in node_cases or key[0] == "rostest.runner.RosTest"):
                     continue  # counted from rosunit-*.xml, which knows whether it was skipped
@@ -104,6 +124,14 @@ def main():
             failures.append("%s: no results (the test did not run or crashed)" % name)
     for line in failures:
         print("FAILED " + line)
+    # The whole message of each failure after the one-line list: a CI log is often all there is
+    # of an intermittent failure (the tests' messages carry what the process saw, e.g. the
+    # replay's event list and projector_host's log tail).
+    for label, lines in details:
+        if lines:
+            print("FAILED> ---- %s ----" % label)
+            for line in lines:
+                print("FAILED>   " + line)
     for line in skips:
         print("SKIPPED " + line)
     print("%d passed, %d failed, %d skipped" % (passed, failed, skipped))

@@ -190,6 +190,7 @@ void ProjectedPathDisplay::onEnable()
 void ProjectedPathDisplay::onDisable()
 {
   MFDClass::onDisable();
+  after_jump_.forget();  // enabled again later, only new plans are drawn
   pauseDraining();  // nothing to drain: no subscription while disabled
   scene_node_->setVisible(false);
   for (FloorMesh* mesh : {arrow_mesh_.get(), circle_mesh_.get(), glyph_mesh_.get(), stop_mesh_.get(), corridor_mesh_.get(),
@@ -209,6 +210,9 @@ void ProjectedPathDisplay::reset()
   {
     return;
   }
+  // rviz resets every display a frame after ROS time jumps back (a bag looping): a plan of the new
+  // timeline received meanwhile goes through the tf filter again (PathAfterJump).
+  const nav_msgs::Path::ConstPtr again = isEnabled() ? after_jump_.retake(RosClock::shared().tick()) : nullptr;
   MFDClass::reset();
   last_msg_.reset();
   floor_points_.clear();
@@ -244,6 +248,16 @@ void ProjectedPathDisplay::reset()
   {
     unsubscribe();
     subscribe();
+  }
+  if (again)
+  {
+    // Waits for its transform as a new plan does (drainQueue draws it with the newest transform if
+    // tf was cleared after the plan's own had come); drawn at once if tf has it.
+    tf_waiting_ = true;
+    tf_wait_since_ = std::chrono::steady_clock::now();
+    tf_wait_error_ = "the plan received as ROS time jumped back waits for its transform";
+    setStatus(rviz::StatusProperty::Warn, "Transform", QString(kWaitingForTfAfterJump) + tf_wait_error_);
+    tf_filter_->add(again);
   }
 }
 
@@ -312,6 +326,7 @@ void ProjectedPathDisplay::fixedFrameChanged()
 void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path const>& event)
 {
   const nav_msgs::Path::ConstPtr& msg = event.getConstMessage();
+  after_jump_.received(msg);
   const boost::shared_ptr<ros::M_string>& header = event.getConnectionHeaderPtr();
   const auto latching = header ? header->find("latching") : ros::M_string::const_iterator();
   latched_publisher_ = header && latching != header->end() && latching->second == "1";
@@ -338,11 +353,16 @@ void ProjectedPathDisplay::checkFrame(const ros::MessageEvent<nav_msgs::Path con
 
 void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
 {
+  draw(msg, msg->header.stamp);
+}
+
+void ProjectedPathDisplay::draw(const nav_msgs::Path::ConstPtr& msg, const ros::Time& lookup_stamp)
+{
   // The tf filter only lets a message through once its frame can be transformed; this lookup can
   // still fail if tf changed since, and then the previous drawing stays.
   Ogre::Vector3 position;
   Ogre::Quaternion orientation;
-  if (!context_->getFrameManager()->getTransform(msg->header, position, orientation))
+  if (!context_->getFrameManager()->getTransform(msg->header.frame_id, lookup_stamp, position, orientation))
   {
     std::string error;
     context_->getFrameManager()->transformHasProblems(msg->header.frame_id, msg->header.stamp, error);
@@ -353,7 +373,11 @@ void ProjectedPathDisplay::processMessage(const nav_msgs::Path::ConstPtr& msg)
               expected ? QString(kWaitingForTfAfterJump) + QString::fromStdString(error) : QString::fromStdString(error));
     return;
   }
-  setStatus(rviz::StatusProperty::Ok, "Transform", "Transform OK");
+  setStatus(rviz::StatusProperty::Ok, "Transform",
+            lookup_stamp == msg->header.stamp ?
+                "Transform OK" :
+                "Transform OK (ROS time jumped back and tf was cleared after this plan's transform came: "
+                "drawn with the newest transform)");
   tf_waiting_ = false;
   const RigidTransform to_fixed = RigidTransform::fromQuaternion(
       orientation.x, orientation.y, orientation.z, orientation.w, Vec3{position.x, position.y, position.z});
@@ -373,6 +397,11 @@ void ProjectedPathDisplay::drainQueue()
     off_view_source_.resetCue();
   }
   drain();
+  if (tf_waiting_ && after_jump_.last() &&
+      PathAfterJump::olderThanTf(*context_->getFrameManager(), *after_jump_.last(), RosClock::shared().policy()))
+  {
+    draw(after_jump_.last(), ros::Time());  // its transform will never come: the newest one
+  }
   if (tf_waiting_ && std::chrono::duration<double>(std::chrono::steady_clock::now() - tf_wait_since_).count() > kTfWaitGrace)
   {
     tf_waiting_ = false;  // reported once; a path that passes sets Transform OK
@@ -403,6 +432,7 @@ void ProjectedPathDisplay::checkPathTimeout()
   // Forget the path (a property change or a new fixed frame must not bring it back); only a new
   // path is drawn again. Raising the timeout afterwards shows nothing until then.
   last_msg_.reset();
+  after_jump_.forget();
   floor_points_.clear();
   dropped_poses_ = 0;
   spaced_ = &empty_;

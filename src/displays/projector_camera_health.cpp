@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <OgreRenderWindow.h>
+
 #include "rviz_projector/displays/projector_camera_display.h"
 #include "rviz_projector/displays/projector_output.h"
 #include "rviz_projector/displays/projector_output_window.h"
@@ -34,6 +36,22 @@ ProjectorCameraHealth ProjectorCameraDisplay::health() const
     h.full_screen = h.window_shown && output_->window() && output_->window()->isFullScreenOn();
     h.screen_name = output_->shownScreen();
     h.screen_connected = !h.screen_name.empty() && ProjectorOutput::screenConnected(h.screen_name);
+    if (const Ogre::RenderWindow* rw = output_->renderWindow())
+    {
+      h.drawn_width = static_cast<int>(rw->getWidth());
+      h.drawn_height = static_cast<int>(rw->getHeight());
+    }
+    if (const ProjectorOutputWindow* window = output_->window())
+    {
+      const QSize pixels = window->drawingPixels();
+      h.window_width = pixels.width();
+      h.window_height = pixels.height();
+    }
+    const PixelRect image = output_->imageRect();
+    h.image_left = image.left;
+    h.image_top = image.top;
+    h.image_width = image.width;
+    h.image_height = image.height;
   }
   // The scene (or the crosshairs) is drawn only with a lens and a fresh pose: renderNow()'s rule.
   const auto status = [this](const char* name) { return statuses_.text(name).toStdString(); };

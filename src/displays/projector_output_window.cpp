@@ -43,6 +43,12 @@ Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
   return render_widget_->renderWindow();
 }
 
+QSize ProjectorOutputWindow::drawingPixels() const
+{
+  const double ratio = render_widget_->windowHandle() ? render_widget_->windowHandle()->devicePixelRatio() : 1.0;
+  return QSize(static_cast<int>(render_widget_->width() * ratio), static_cast<int>(render_widget_->height() * ratio));
+}
+
 void ProjectorOutputWindow::moveToScreen(QScreen* screen)
 {
   if (!windowHandle())

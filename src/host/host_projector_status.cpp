@@ -55,6 +55,10 @@ void fillProjectorStatus(const ProjectorCameraDisplay& projector, const std::vec
   status.add("Full screen", health.full_screen);
   status.add("Screen", health.screen_name.empty() ? std::string("none") : health.screen_name);
   status.add("Screen connected", health.screen_connected);
+  status.addf("Window size (px)", "%dx%d", health.window_width, health.window_height);
+  status.addf("Drawn size (px)", "%dx%d", health.drawn_width, health.drawn_height);
+  status.addf("Image in the window (px)", "%dx%d+%d+%d", health.image_width, health.image_height, health.image_left,
+              health.image_top);
   unsigned char level = diagnostic_msgs::DiagnosticStatus::OK;
   if (worst == rviz::StatusProperty::Warn)
   {

@@ -117,3 +117,15 @@ TEST(ClockPolicy, ASimulatedClockStartingOpensTheTfGraceAsAJumpBackDoes)
   EXPECT_FALSE(wall.justStartedOrJumpedBack());
   EXPECT_TRUE(std::isinf(wall.sinceTimeStarted()));
 }
+
+TEST(ClockPolicy, AMessageBelongsToTheTimelineOfRosNowUnlessStampedAfterIt)
+{
+  // A bag of 100..110 s looping: ROS time jumps from 110 back to 100.
+  EXPECT_TRUE(ClockPolicy::inCurrentTimeline(100.05, 100.0)) << "replayed just after the jump, clock read late";
+  EXPECT_TRUE(ClockPolicy::inCurrentTimeline(100.25, 100.0)) << "the slack's edge";
+  EXPECT_FALSE(ClockPolicy::inCurrentTimeline(100.26, 100.0));
+  EXPECT_FALSE(ClockPolicy::inCurrentTimeline(109.6, 100.0)) << "the last plan before the jump";
+  EXPECT_TRUE(ClockPolicy::inCurrentTimeline(50.0, 100.0)) << "an old message is of this timeline";
+  EXPECT_TRUE(ClockPolicy::inCurrentTimeline(0.0, 100.0)) << "unstamped";
+  EXPECT_FALSE(ClockPolicy::inCurrentTimeline(std::nan(""), 100.0)) << "no stamp to trust";
+}

@@ -40,6 +40,30 @@ class Pixels(object):
         self.height = height
         self.data = image.data  # BGRX, 4 bytes per pixel (24-bit depth)
 
+    def summary(self, step=2):
+        """What the grab shows, for a failure message: lit pixels (any channel > 40, every `step`-th
+        row and column), their bounding box, and the commonest lit colours."""
+        d = self.data
+        lit = 0
+        box = None
+        colours = {}
+        for py in range(0, self.height, step):
+            row = py * self.width
+            for px in range(0, self.width, step):
+                i = 4 * (row + px)
+                b, g, r = d[i], d[i + 1], d[i + 2]
+                if r > 40 or g > 40 or b > 40:
+                    lit += 1
+                    box = (px, py, px, py) if box is None else (min(box[0], px), min(box[1], py),
+                                                              max(box[2], px), max(box[3], py))
+                    key = (r // 32 * 32, g // 32 * 32, b // 32 * 32)
+                    colours[key] = colours.get(key, 0) + 1
+        common = sorted(colours.items(), key=lambda kv: -kv[1])[:4]
+        return "%dx%d grab: %d lit of %d sampled%s%s" % (
+            self.width, self.height, lit, ((self.width + step - 1) // step) * ((self.height + step - 1) // step),
+            "" if box is None else ", lit box x %d..%d y %d..%d" % (box[0], box[2], box[1], box[3]),
+            "" if not common else ", colours (RGB, 32-steps) " + ", ".join("%s x%d" % (c, n) for c, n in common))
+
     def rgb(self, px, py):
         i = 4 * (py * self.width + px)
         return self.data[i + 2], self.data[i + 1], self.data[i]

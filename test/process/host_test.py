@@ -95,6 +95,7 @@ class HostTest(unittest.TestCase):
         self.tmp = tempfile.mkdtemp(prefix="host_test_")
         self.odometry_speed = None  # set: wait_colour publishes this forward speed with each try
         self.person = None  # set (x, y in map): wait_colour publishes a scan of a person there with each try
+        self.last_grab = None  # (window, Pixels) of wait_colour's last try: failure messages describe it
         self.publish_path()
 
     def tearDown(self):
@@ -171,6 +172,7 @@ class HostTest(unittest.TestCase):
             if self.person is not None:
                 self.publish_person()
             pixels = grab_window(self.x, w)
+            self.last_grab = (w, pixels)
             if any(pixels.count_colour(c) < n for c, n in (also or [])):
                 return None
             return (w, pixels) if pixels.count_colour(colour) >= minimum else None
@@ -178,10 +180,11 @@ class HostTest(unittest.TestCase):
 
     def start_showing(self, config, args=()):
         host = self.start_host(config, args)
+        self.last_grab = None
         shown = self.wait_colour(host.pid, MAGENTA, timeout=START_TIMEOUT)
         if shown is None:
-            self.fail("projector_host never showed the magenta arrows; windows: %s; diagnostics: %s; log:\n%s"
-                      % (describe(self.x.windows()), self.diagnostics_text(), host.log_tail()))
+            self.fail("projector_host never showed the magenta arrows; windows: %s; %s; diagnostics: %s; log:\n%s"
+                      % (describe(self.x.windows()), self.grab_text(), self.diagnostics_text(), host.log_tail()))
         return host, shown
 
     def reload(self, node="projector_host"):
@@ -339,6 +342,15 @@ class HostTest(unittest.TestCase):
         status = wait_for(find, timeout, 0.1)
         self.assertIsNotNone(status, "no 'projector_host: %s' status on /diagnostics" % name)
         return status, {kv.key: kv.value for kv in status.values}
+
+    def grab_text(self):
+        """The last grab wait_colour made, the window it grabbed and the X windows below it."""
+        if not self.last_grab:
+            return "no grab made"
+        w, pixels = self.last_grab
+        return "last grab of 0x%x '%s' %dx%d+%d+%d: %s; window tree: %s" % (
+            w["id"], w["title"], w["width"], w["height"], w["x"], w["y"], pixels.summary(),
+            " | ".join(self.x.tree(w["id"])))
 
     def diagnostics_text(self):
         with self.diag_lock:

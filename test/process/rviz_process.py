@@ -81,6 +81,26 @@ class XWindows(object):
         prop = w.get_full_property(self.NET_WM_PID, Xatom.CARDINAL)
         return int(prop.value[0]) if prop is not None and len(prop.value) else None
 
+    def tree(self, window_id, depth=0):
+        """Lines describing window `window_id` and every window below it, titled or not (OGRE draws
+        into an untitled child window): id, geometry on the root, map state, title."""
+        lines = []
+        try:
+            w = self.d.create_resource_object("window", window_id)
+            geo = w.get_geometry()
+            pos = self.root.translate_coords(w, 0, 0)
+            attrs = w.get_attributes()
+            title = self._title(w)
+            children = w.query_tree().children
+        except XError as e:
+            return ["%s0x%x: gone (%s)" % ("  " * depth, window_id, e.__class__.__name__)]
+        state = {X.IsViewable: "viewable", X.IsUnviewable: "unviewable"}.get(attrs.map_state, "unmapped")
+        lines.append("%s0x%x %dx%d+%d+%d %s %r" % ("  " * depth, window_id, geo.width, geo.height, pos.x, pos.y,
+                                                   state, title))
+        for child in children:
+            lines += self.tree(child.id, depth + 1)
+        return lines
+
     def windows(self):
         """Every window with a title: dicts of id, title, pid, mapped, x, y, width, height.
 

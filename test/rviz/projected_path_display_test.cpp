@@ -20,6 +20,7 @@
 
 #include "rviz_projector/core/arrow_outline.h"
 #include "rviz_projector/displays/projected_path_display.h"
+#include "rviz_projector/displays/ros_clock.h"
 #include "rviz_test_fixture.h"
 
 using rviz_projector::ProjectedPathDisplay;
@@ -316,6 +317,95 @@ TEST_F(ProjectedPathTest, ResetKeepsTheSubscriptionOfAnUnlatchedPlanner)
   rviz_->manager()->getRootDisplayGroup()->reset();
   EXPECT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 6 && received(); }))
       << "the latched plan did not come back after Reset";
+}
+
+TEST_F(ProjectedPathTest, APlanReplayedAsRosTimeJumpsBackIsDrawnThoughRvizResetsLateOrTfIsCleared)
+{
+  // A bag looping (`rosbag play -l`; seen in CI on a loaded machine): ROS time jumps back and the
+  // bag replays its first transforms and plan. Two things lost that plan, and the floor stayed dark
+  // for a whole planning period:
+  //   A. rviz notices the jump at its next update, a frame late, and resets every display (the plan
+  //      already drawn, or waiting in the tf filter, was dropped);
+  //   B. tf2's listener clears tf at the first transform after the jump, which can come after the
+  //      transforms replayed before the plan: only later transforms remain, and the plan could never
+  //      be transformed at its stamp.
+  // rviz's update is stopped: the test makes each happen at the worst moment, by hand.
+  rviz_->manager()->stopUpdate();
+  const ros::Time t0 = rviz_projector_test::monotonicTestStart();
+  auto buffer = rviz_->manager()->getTF2BufferPtr();
+  const auto mapToOdom = [&](double t) {
+    // A frame of its own, as the fixture's odom (at (1, 0.5) in map turned 90 degrees), but moving
+    // (tf keeps a static transform through a clear).
+    geometry_msgs::TransformStamped s = rviz_projector_test::stampedTransform(
+        "map", "loop_odom", 1.0, 0.5, 0.0, {0.0, 0.0, std::sin(M_PI / 4), std::cos(M_PI / 4)});
+    s.header.stamp = t0 + ros::Duration(t);
+    buffer->setTransform(s, "projected_path_test");
+  };
+  ros::Publisher planner = nh_.advertise<nav_msgs::Path>("/test/looping_plan", 1, false);
+  display_->subProp("Topic")->setValue("/test/looping_plan");
+  ASSERT_TRUE(waitFor([&] { return planner.getNumSubscribers() > 0; }));
+  const auto plan = [&](double length, double t) {
+    nav_msgs::Path path = straightPath("loop_odom", length);
+    path.header.stamp = t0 + ros::Duration(t);
+    planner.publish(path);
+  };
+  const auto endOfPass = [&] {  // the end of a pass: a plan of 6 arrows at t0 + 10 s
+    ros::Time::setNow(t0 + ros::Duration(10.0));
+    buffer->clear();
+    mapToOdom(9.9);
+    mapToOdom(10.0);
+    plan(3.05, 10.0);
+    return waitFor([&] { return display_->spacedPath().arrows.size() == 6; });
+  };
+  const auto transformText = [&] { return statusOf(display_, "Transform").text.toStdString(); };
+
+  // A: the loop's first plan (4 arrows) is drawn, then rviz resets: drawn again from the same plan.
+  ASSERT_TRUE(endOfPass());
+  ros::Time::setNow(t0 + ros::Duration(0.05));
+  buffer->clear();
+  mapToOdom(0.0);
+  mapToOdom(0.04);
+  plan(2.05, 0.03);
+  ASSERT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 4; }))
+      << "the loop's first plan was not drawn: " << display_->spacedPath().arrows.size() << " arrows";
+  rviz_->manager()->resetTime();
+  EXPECT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 4; }))
+      << "A: the plan of the new pass was lost at rviz's late reset: " << display_->spacedPath().arrows.size()
+      << " arrows; " << transformText();
+  EXPECT_EQ(transformText(), "Transform OK");
+
+  // B: tf cleared after the transforms before the plan came; only later ones arrive.
+  ASSERT_TRUE(endOfPass());
+  ros::Time::setNow(t0 + ros::Duration(0.05));
+  mapToOdom(0.0);
+  mapToOdom(0.02);
+  buffer->clear();  // tf2's listener, at its first transform after the jump
+  plan(2.05, 0.03);
+  mapToOdom(0.06);
+  mapToOdom(0.08);
+  EXPECT_TRUE(waitFor([&] { return display_->spacedPath().arrows.size() == 4; }))
+      << "B: the plan whose transforms were cleared was never drawn: " << display_->spacedPath().arrows.size()
+      << " arrows; " << transformText();
+  const Status transform = statusOf(display_, "Transform");
+  EXPECT_EQ(transform.level, rviz::StatusProperty::Ok) << transformText();
+  EXPECT_TRUE(transform.text.contains("newest transform")) << transformText();
+  // Where it lies (the newest transform is the same here): loop_odom's +x is map's +y from (1, 0.5),
+  // so the plan from x 0 to 2.05 runs along map x = 1, y from 0.5 to 2.55.
+  for (const auto& arrow : display_->spacedPath().arrows)
+  {
+    EXPECT_NEAR(arrow.tip.x, 1.0, 1e-6);
+    EXPECT_GE(arrow.tip.y, 0.5 - 1e-6);
+    EXPECT_LE(arrow.tip.y, 2.55 + 1e-6);
+  }
+
+  // A plan of before a jump (stamped in the old timeline) is not drawn again by rviz's reset.
+  ASSERT_TRUE(endOfPass());
+  ros::Time::setNow(t0 + ros::Duration(0.5));  // the loop, no plan of the new pass yet
+  ASSERT_TRUE(waitFor([&] { return rviz_projector::RosClock::shared().policy().justStartedOrJumpedBack(); }));
+  rviz_->manager()->resetTime();
+  EXPECT_FALSE(waitFor([&] { return !display_->spacedPath().arrows.empty(); }, 0.5))
+      << "the plan of before the jump came back after rviz's reset";
+  rviz_->manager()->startUpdate();
 }
 
 TEST_F(ProjectedPathTest, EmptyPathIsReportedAndClearsTheDrawing)

@@ -61,6 +61,15 @@ public:
   /// Within kJumpGrace of a backward jump or of ROS time starting: missing tf is expected.
   bool justStartedOrJumpedBack() const { return sinceJump() < kJumpGrace || sinceTimeStarted() < kJumpGrace; }
 
+  /// How far ahead of ROS now a message's stamp may be and still belong to the current timeline:
+  /// a bag's /clock comes in steps (rosbag play: 100 Hz of bag time) and is read a moment late, so a
+  /// message replayed right after a backward jump may be stamped slightly after the clock read; one
+  /// from before the jump is stamped up to a whole loop later (seconds).
+  static constexpr double kTimelineSlack = 0.25;
+  /// Whether a message stamped `stamp` (seconds) was sent in the timeline of ROS now `ros_now`: not
+  /// a message of before a backward jump (stamped later than the jump's new time).
+  static bool inCurrentTimeline(double stamp, double ros_now) { return stamp <= ros_now + kTimelineSlack; }
+
 private:
   bool started_ = false;
   double ros_now_ = 0.0;

@@ -19,6 +19,7 @@
 #include "rviz_projector/core/path_triangles.h"
 #include "rviz_projector/core/vec2.h"
 #include "rviz_projector/displays/path_cue_source.h"
+#include "rviz_projector/displays/path_after_jump.h"
 #include "rviz_projector/displays/private_callback_queue.h"
 #include "rviz_projector/displays/projection_animation.h"
 #include "rviz_projector/displays/corridor_source.h"
@@ -97,6 +98,9 @@ protected:
   void onEnable() override;
   void onDisable() override;
   void processMessage(const nav_msgs::Path::ConstPtr& msg) override;
+  /// Draws `msg` with the transform to the fixed frame at `lookup_stamp` (its own stamp, or zero:
+  /// the newest, for a plan whose transform tf cleared at a backward jump of ROS time).
+  void draw(const nav_msgs::Path::ConstPtr& msg, const ros::Time& lookup_stamp);
   /// Draws the last path again in the new fixed frame, once tf can transform it (rviz's base class
   /// would clear it until the planner publishes again, which a latched plan never does).
   void fixedFrameChanged() override;
@@ -173,6 +177,7 @@ private:
   /// them in the order they were recorded).
   static constexpr double kTfWaitGrace = 1.0;
   bool tf_waiting_ = false;
+  PathAfterJump after_jump_;  ///< the plan received last: not lost when ROS time jumps back
   std::chrono::steady_clock::time_point tf_wait_since_;
   QString tf_wait_error_;
   std::size_t dropped_poses_ = 0;

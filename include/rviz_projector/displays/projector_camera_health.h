@@ -22,6 +22,14 @@ struct ProjectorCameraHealth
   bool full_screen = false;               ///< ... full screen
   std::string screen_name;                ///< screen it is shown on (empty while hidden)
   bool screen_connected = false;          ///< that screen is (still) connected
+  int window_width = 0;                   ///< the output window's drawing area, in screen pixels
+  int window_height = 0;
+  int drawn_width = 0;                    ///< the size OGRE draws at (its render window): should equal
+  int drawn_height = 0;                   ///< the window's; a mismatch means frames that miss the screen
+  int image_left = 0;                     ///< where the projector image lands in the window (letterbox)
+  int image_top = 0;
+  int image_width = 0;
+  int image_height = 0;
   std::uint64_t frames_rendered = 0;      ///< frames rendered into the output window so far
   std::uint64_t frames_skipped = 0;       ///< timer ticks that needed no new frame
   bool motion_compensation = false;       ///< Motion compensation is enabled

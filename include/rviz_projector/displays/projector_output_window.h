@@ -29,6 +29,8 @@ public:
   ~ProjectorOutputWindow() override;
 
   Ogre::RenderWindow* renderWindow() const;
+  /// The render widget's size in device pixels (what OGRE's render window should be).
+  QSize drawingPixels() const;
   /// See ProjectorRenderWidget::setRepaintRequest.
   void setRepaintRequest(std::function<void()> request);
 
