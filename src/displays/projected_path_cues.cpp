@@ -323,4 +323,24 @@ void ProjectedPathDisplay::drawCues(const ros::Time& now, bool force)
   context_->queueRender();
 }
 
+// The cue meshes' sizes, for tests and tools.
+std::size_t ProjectedPathDisplay::glyphTriangleCount() const
+{
+  return glyph_mesh_ ? glyph_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::corridorTriangleCount() const
+{
+  return corridor_mesh_ ? corridor_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::offViewTriangleCount() const
+{
+  return off_view_mesh_ ? off_view_mesh_->triangleCount() : 0;
+}
+
+std::size_t ProjectedPathDisplay::stopZoneTriangleCount() const
+{
+  return stop_mesh_ ? stop_mesh_->triangleCount() : 0;
+}
 }  // namespace rviz_projector

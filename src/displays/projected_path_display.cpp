@@ -579,26 +579,6 @@ void ProjectedPathDisplay::redraw()
   context_->queueRender();
 }
 
-std::size_t ProjectedPathDisplay::glyphTriangleCount() const
-{
-  return glyph_mesh_ ? glyph_mesh_->triangleCount() : 0;
-}
-
-std::size_t ProjectedPathDisplay::corridorTriangleCount() const
-{
-  return corridor_mesh_ ? corridor_mesh_->triangleCount() : 0;
-}
-
-std::size_t ProjectedPathDisplay::offViewTriangleCount() const
-{
-  return off_view_mesh_ ? off_view_mesh_->triangleCount() : 0;
-}
-
-std::size_t ProjectedPathDisplay::stopZoneTriangleCount() const
-{
-  return stop_mesh_ ? stop_mesh_->triangleCount() : 0;
-}
-
 std::size_t ProjectedPathDisplay::arrowTriangleCount() const
 {
   return arrow_mesh_ ? arrow_mesh_->triangleCount() : 0;

@@ -308,6 +308,11 @@ OutputResult ProjectorOutput::present(const OutputRequest& request)
     result.level = problem.isEmpty() ? OutputResult::Ok : OutputResult::Warn;
     result.text = problem.isEmpty() ? text : problem + "; using " + text;
   }
+  if (!window_->setupProblem().isEmpty())
+  {
+    result.level = OutputResult::Error;
+    result.text = text + ", but " + window_->setupProblem();
+  }
   return result;
 }
 

@@ -43,6 +43,11 @@ Ogre::RenderWindow* ProjectorOutputWindow::renderWindow() const
   return render_widget_->renderWindow();
 }
 
+QString ProjectorOutputWindow::setupProblem() const
+{
+  return QString::fromStdString(render_widget_->setupProblem());
+}
+
 QSize ProjectorOutputWindow::drawingPixels() const
 {
   const double ratio = render_widget_->windowHandle() ? render_widget_->windowHandle()->devicePixelRatio() : 1.0;

@@ -92,6 +92,7 @@ int main(int argc, char** argv)
 
   installSignalHandlers();
   QApplication app(argc, argv);
+  logXErrors();  // after Qt, which installs a handler of its own that drops them
   app.setQuitOnLastWindowClosed(false);  // windows come and go on reload; the host runs until told
   QSocketNotifier signals(signal_pipe[0], QSocketNotifier::Read);
   QObject::connect(&signals, &QSocketNotifier::activated, &app, [] {

@@ -1,5 +1,7 @@
 #include "x_display_check.h"
 
+#include <atomic>
+#include <cstdio>
 #include <cstdlib>
 
 // Xlib in a file of its own: its macros (Bool, Status, None...) clash with Qt and rviz.
@@ -7,6 +9,32 @@
 
 namespace rviz_projector
 {
+namespace
+{
+std::atomic<unsigned long> x_errors{ 0 };
+
+int logXError(::Display* display, XErrorEvent* event)
+{
+  const unsigned long n = ++x_errors;
+  if (n <= 20 || n % 1000 == 0)
+  {
+    char text[160] = "";
+    XGetErrorText(display, event->error_code, text, sizeof text);
+    std::fprintf(stderr,
+                 "projector_host: X error %lu: %s (error %d, request %d.%d, resource 0x%lx)%s\n", n, text,
+                 static_cast<int>(event->error_code), static_cast<int>(event->request_code),
+                 static_cast<int>(event->minor_code), event->resourceid,
+                 n == 20 ? "; from now on only every 1000th is logged" : "");
+  }
+  return 0;  // as Qt's handler: the process goes on
+}
+}  // namespace
+
+void logXErrors()
+{
+  XSetErrorHandler(logXError);
+}
+
 std::string xDisplayProblem()
 {
   const char* name = std::getenv("DISPLAY");

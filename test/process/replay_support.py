@@ -12,8 +12,10 @@ import sys
 import threading
 import time
 import zlib
+from xmlrpc.client import ServerProxy
 
 import rosbag
+import rosgraph
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rviz_process import ProcessUnderTest  # noqa: E402
@@ -246,6 +248,22 @@ class RateRun(object):
 
     def paused_between(self, t0, t1):
         return any(a < t1 and b > t0 for a, b in self.pauses)
+
+
+def subscriber_connections(publisher, subscriber):
+    """(topics `subscriber` subscribes to that `publisher` publishes, those of them on which the two
+    are connected), from the master and the publisher's own bus information; None while the
+    publisher is not registered or does not answer."""
+    master = rosgraph.Master("/replay_test")
+    try:
+        pubs, subs, _ = master.getSystemState()
+        _, _, bus = ServerProxy(master.lookupNode(publisher)).getBusInfo("/replay_test")
+    except Exception:  # not registered yet, or starting
+        return None
+    wanted = ({t for t, nodes in pubs if publisher in nodes} & {t for t, nodes in subs if subscriber in nodes})
+    # getBusInfo rows: [id, destination caller id, direction, transport, topic, connected, ...]
+    up = {row[4] for row in bus if row[1] == subscriber and row[2] == "o" and row[5]}
+    return wanted, up & wanted
 
 
 class ReplayProcess(ProcessUnderTest):

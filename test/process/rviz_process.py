@@ -95,10 +95,60 @@ class XWindows(object):
         except XError as e:
             return ["%s0x%x: gone (%s)" % ("  " * depth, window_id, e.__class__.__name__)]
         state = {X.IsViewable: "viewable", X.IsUnviewable: "unviewable"}.get(attrs.map_state, "unmapped")
-        lines.append("%s0x%x %dx%d+%d+%d %s %r" % ("  " * depth, window_id, geo.width, geo.height, pos.x, pos.y,
-                                                   state, title))
+        lit = ""
+        if attrs.map_state == X.IsViewable:
+            # What the window itself holds (read from it, not from the screen): whether a picture
+            # drawn into it is there even when a grab of the screen's rectangle shows none.
+            try:
+                data = w.get_image(0, 0, geo.width, geo.height, X.ZPixmap, 0xffffffff).data
+                lit = ", %d lit of its own pixels" % sum(1 for i in range(0, len(data) - 3, 4)
+                                                          if data[i] > 40 or data[i + 1] > 40 or data[i + 2] > 40)
+            except XError as e:
+                lit = ", its pixels unreadable (%s)" % e.__class__.__name__
+        lines.append("%s0x%x %dx%d+%d+%d %s %r%s" % ("  " * depth, window_id, geo.width, geo.height, pos.x, pos.y,
+                                                     state, title, lit))
         for child in children:
             lines += self.tree(child.id, depth + 1)
+        return lines
+
+    def covering(self, window_id):
+        """Lines describing the viewable top-level windows stacked above the top-level window that
+        holds `window_id` and overlapping it, titled or not (what a grab of its rectangle shows
+        instead of it), topmost last."""
+        try:
+            top = self.d.create_resource_object("window", window_id)
+            while True:
+                parent = top.query_tree().parent
+                if parent.id == self.root.id:
+                    break
+                top = parent
+            g = top.get_geometry()
+            pos = self.root.translate_coords(top, 0, 0)
+            children = self.root.query_tree().children  # bottom to top
+        except XError as e:
+            return ["0x%x: gone (%s)" % (window_id, e.__class__.__name__)]
+        lines = []
+        above = False
+        for w in children:
+            if w.id == top.id:
+                above = True
+                continue
+            if not above:
+                continue
+            try:
+                a = w.get_attributes()
+                wg = w.get_geometry()
+                wp = self.root.translate_coords(w, 0, 0)
+                title = self._title(w)
+            except XError:
+                continue
+            if a.map_state != X.IsViewable:
+                continue
+            if (wp.x < pos.x + g.width and pos.x < wp.x + wg.width and
+                    wp.y < pos.y + g.height and pos.y < wp.y + wg.height):
+                lines.append("0x%x %dx%d+%d+%d %r pid %s%s" % (w.id, wg.width, wg.height, wp.x, wp.y, title,
+                                                              self._pid(w), " override-redirect" if a.override_redirect
+                                                              else ""))
         return lines
 
     def windows(self):

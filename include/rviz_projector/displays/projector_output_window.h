@@ -29,6 +29,8 @@ public:
   ~ProjectorOutputWindow() override;
 
   Ogre::RenderWindow* renderWindow() const;
+  /// Empty, or why frames may not reach the window (ProjectorRenderWidget::setupProblem).
+  QString setupProblem() const;
   /// The render widget's size in device pixels (what OGRE's render window should be).
   QSize drawingPixels() const;
   /// See ProjectorRenderWidget::setRepaintRequest.

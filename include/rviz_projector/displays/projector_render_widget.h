@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include <QWidget>
 
@@ -28,6 +29,11 @@ public:
   /// never renders by itself: rendering into a window that is still being mapped or resized
   /// crashed Mesa's software renderer; the display renders at its next frame instead.
   void setRepaintRequest(std::function<void()> request) { repaint_request_ = std::move(request); }
+  /// Empty, or why frames may not reach the window: the X server kept refusing the GL driver's use
+  /// of the render window (kCreateAttempts creations).
+  const std::string& setupProblem() const { return setup_problem_; }
+  /// Creations of the render window tried before giving up.
+  static constexpr int kCreateAttempts = 4;
 
 protected:
   void moveEvent(QMoveEvent* event) override;
@@ -36,7 +42,13 @@ protected:
   QPaintEngine* paintEngine() const override { return nullptr; }
 
 private:
+  /// RVIZ_PROJECTOR_TEST_REFUSE_WINDOWS=N: the first N creations count as refused (tests of the
+  /// recovery: the race itself cannot be made to happen on demand).
+  static int testRefusals();
+  void destroyRenderWindow();
+
   Ogre::RenderWindow* render_window_ = nullptr;
+  std::string setup_problem_;
   std::function<void()> repaint_request_;
 };
 }  // namespace rviz_projector
