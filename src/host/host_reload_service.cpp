@@ -27,13 +27,18 @@ HostReloadService::~HostReloadService()
   // The guard goes first: a request waiting for the Qt thread (this one, now in here) gets a
   // broken promise at once and replies "shutting down". Shutting the server down first would drop
   // the caller's connection instead: a failed call with no reason (test/host/
-  // host_reload_service_test.cpp).
+  // host_reload_service_test.cpp, which also found the spinner's part below).
   {
     std::lock_guard<std::mutex> lock(guard_mutex_);
     guard_.reset();
   }
-  server_.shutdown();
+  // Then the spinner's thread is joined: the request it is answering finishes, and roscpp writes
+  // its reply in that same thread right after onRequest returns. Shutting the server down while it
+  // is between the two drops the connection under the reply (seen in CI: the caller's call failed).
   spinner_->stop();
+  // Requests that arrived meanwhile are answered here ("shutting down"), not dropped.
+  queue_.callAvailable();
+  server_.shutdown();
 }
 
 bool HostReloadService::onRequest(std_srvs::Trigger::Request& /*request*/, std_srvs::Trigger::Response& response)
