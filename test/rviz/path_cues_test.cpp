@@ -219,11 +219,14 @@ TEST_F(PathCuesTest, MarchingArrowsSitWhereTheTimeSaysAndReplansChangeNothing)
     phase = phase < 0 ? phase + kSpacing : phase;
     const std::vector<double> tips = tipsX(phase);
     ASSERT_GE(tips.size(), 4u);
+    // Both checks in the condition: the frame of the previous time has its arrows' heads on these
+    // shafts (tips 0.07 m behind), so shafts alone would accept it before this time's frame shows.
     const QImage frame = grabUntil([&](const QImage& image) {
       for (double tip : tips)
       {
-        const Vec2 shaft{tip - 0.13, 0.0};
-        if (inView(shaft) && !sameColour(colourAt(image, shaft), kArrowMagenta, 30))
+        const Vec2 shaft{tip - 0.13, 0.0}, ahead{tip + 0.02, 0.0};
+        if (inView(shaft) && inView(ahead) &&
+            (!sameColour(colourAt(image, shaft), kArrowMagenta, 30) || !sameColour(colourAt(image, ahead), kBlack, 30)))
         {
           return false;
         }
