@@ -190,7 +190,11 @@ TEST_F(PathCuesTest, HorizonCutsAndFadesByTheTipsArcLength)
   EXPECT_LE(qRed(centre) + qBlue(centre), 20);
   // Horizon 0.5: window arc [0.6, 1.1]; the destination (arc 1.2) is beyond it: not drawn.
   cue("Horizon")->subProp("Length")->setValue(0.5);
-  const QImage cut = grabUntil([&](const QImage& image) { return countColour(image, kGreen, 40) == 0; });
+  // The circle's own pixel in the condition: kGreen counts full green only, which the alpha-0.8
+  // circle of the frame before is not.
+  const QImage cut = grabUntil([&](const QImage& image) {
+    return countColour(image, kGreen, 40) == 0 && sameColour(colourAt(image, {1.5, 0.0}), kBlack, 20);
+  });
   EXPECT_EQ(countColour(cut, kGreen, 40), 0) << "destination beyond the horizon: hidden";
   EXPECT_TRUE(sameColour(colourAt(cut, {1.5, 0.0}), kBlack, 20));
   publishPath(straightPath());
@@ -513,7 +517,11 @@ TEST_F(PathCuesTest, BadInputGetsStatusesAndNothingBreaks)
   cue("Horizon")->setValue(true);
   EXPECT_TRUE(waitFor([&] { return statusOf(path_, "Robot").text.contains("no_such_frame"); }));
   // Without the robot the horizon starts at the path's start: x 0.3 .. 1.3.
-  const QImage frame = grabUntil([&](const QImage& image) { return countColour(image, kArrowMagenta) > 50; });
+  // The cut in the condition too: the frame before the horizon has every arrow.
+  const QImage frame = grabUntil([&](const QImage& image) {
+    return countColour(image, kArrowMagenta) > 50 && sameColour(colourAt(image, {0.85 - 0.13, 0.0}), kArrowMagenta, 30) &&
+           sameColour(colourAt(image, {1.85 - 0.13, 0.0}), kBlack, 30);
+  });
   EXPECT_TRUE(sameColour(colourAt(frame, {0.85 - 0.13, 0.0}), kArrowMagenta, 30));
   EXPECT_TRUE(sameColour(colourAt(frame, {1.85 - 0.13, 0.0}), kBlack, 30));
   useStateTopic();

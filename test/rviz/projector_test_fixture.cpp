@@ -277,6 +277,7 @@ QImage ProjectorCameraTest::grab()
   }
   projector_->renderNow();
   QApplication::processEvents();
+  syncWithTheXServer();  // the frame just swapped is on the server before Qt's connection reads it
   QScreen* screen = window->windowHandle() ? window->windowHandle()->screen() : QGuiApplication::primaryScreen();
   QImage copy = screen->grabWindow(window->winId()).toImage().convertToFormat(QImage::Format_RGB888);
   if (const char* dir = std::getenv("RVIZ_PROJECTOR_TEST_IMAGES"))

@@ -100,12 +100,8 @@ int projectorWindows(bool visible_only)
   return n;
 }
 
-namespace
-{
-/// Returns once the X server has processed everything OGRE sent on its connection, the swapped
-/// frame included (XSync on that connection, shared by all of OGRE's GLX windows; a grab through
-/// Qt's connection then sees the frame). libX11 is in the process already (OGRE's GLX uses it):
-/// looked up at run time, so that the tests need not link it. False without such a connection.
+// libX11 is in the process already (OGRE's GLX uses it): looked up at run time, so that the tests
+// need not link it.
 bool syncWithTheXServer()
 {
   void* display = nullptr;
@@ -134,7 +130,6 @@ bool syncWithTheXServer()
   xsync(display, 0);
   return true;
 }
-}  // namespace
 
 void imageRectangle(int window_width, int window_height, int image_width, int image_height, QRect& rectangle)
 {

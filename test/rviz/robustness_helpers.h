@@ -51,6 +51,10 @@ geometry_msgs::TransformStamped projectorMount(const std::string& parent, const 
 int projectorWindows(bool visible_only);
 /// Where an image of image_width x image_height is shown in a window (the letterbox), by hand.
 void imageRectangle(int window_width, int window_height, int image_width, int image_height, QRect& rectangle);
+/// Returns once the X server has processed everything OGRE sent on its connection, the swapped
+/// frame included (XSync on that connection, shared by all of OGRE's GLX windows; a grab through
+/// Qt's connection then sees the frame). False without such a connection.
+bool syncWithTheXServer();
 /// Renders the projector view now and reads its window back from the X server (what it shows),
 /// letterbox removed.
 QImage grabProjector(rviz_projector::ProjectorCameraDisplay* projector);
