@@ -23,6 +23,7 @@
 
 #include "rviz_projector/displays/image_space.h"
 #include "rviz_projector/displays/ogre_name.h"
+#include "rviz_projector/displays/viewport_clear.h"
 
 namespace rviz_projector
 {
@@ -108,7 +109,7 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
   render_texture_->addListener(listener_);
   viewport_ = render_texture_->addViewport(scene_camera_);
   viewport_->setOverlaysEnabled(false);
-  viewport_->setClearEveryFrame(true);
+  setProjectorClear(*viewport_, true);
   viewport_->setBackgroundColour(background_);
   viewport_->setVisibilityMask(visibility_mask_);
 

@@ -27,6 +27,7 @@
 #include "rviz_projector/displays/projector_pattern.h"
 #include "rviz_projector/displays/projector_view.h"
 #include "rviz_projector/displays/ros_clock.h"
+#include "rviz_projector/displays/viewport_clear.h"
 
 namespace rviz_projector
 {
@@ -194,7 +195,7 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
     }
     if (viewport->getClearEveryFrame() == mesh_covers)
     {
-      viewport->setClearEveryFrame(!mesh_covers);
+      setProjectorClear(*viewport, !mesh_covers);
     }
   }
   warp_->setVisibilityMask(drawable ? vis_bit_ : 0u);

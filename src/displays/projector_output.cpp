@@ -15,6 +15,7 @@
 
 #include "rviz_projector/core/screen_choice.h"
 #include "rviz_projector/displays/projector_output_window.h"
+#include "rviz_projector/displays/viewport_clear.h"
 
 namespace rviz_projector
 {
@@ -158,7 +159,7 @@ bool ProjectorOutput::create(bool full_screen, int fsaa, QString& error)
   viewport_->setOverlaysEnabled(false);
   viewport_->setShadowsEnabled(false);
   viewport_->setSkiesEnabled(false);
-  viewport_->setClearEveryFrame(true);
+  setProjectorClear(*viewport_, true);
   viewport_->setBackgroundColour(background_);
   viewport_->setVisibilityMask(visibility_mask_);
   image_rect_ = PixelRect();

@@ -16,6 +16,11 @@
 #include <string>
 #include <vector>
 
+#include <OgreRenderSystem.h>
+#include <OgreRenderTarget.h>
+#include <OgreRenderWindow.h>
+#include <OgreRoot.h>
+#include <OgreViewport.h>
 #include <QColor>
 #include <QGuiApplication>
 #include <QScreen>
@@ -407,6 +412,12 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
       addTarget(floor, 30.0 * oracle.depth(floor) / oracle.fx());
     }
   }
+  // Without D: the window's viewport as the output made it clears depth and stencil together (a
+  // depth clear alone is a per-pixel masked write on the software renderer, doc/dev/performance.md).
+  const unsigned all_three = Ogre::FBT_COLOUR | Ogre::FBT_DEPTH | Ogre::FBT_STENCIL;
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  EXPECT_TRUE(projector_->outputWindow()->renderWindow()->getViewport(0)->getClearEveryFrame());
+  EXPECT_EQ(projector_->outputWindow()->renderWindow()->getViewport(0)->getClearBuffers(), all_three);
   auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
   auto greenCount = [&](const QImage& image) {
     int n = 0;
@@ -450,4 +461,23 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
   }
   EXPECT_EQ(differ, 0) << "pixels that differ between the whole mesh and its occupied cells";
   saveShot(occupied, "warp_occupied_cells");
+  // Through the lens, both passes too: the window's viewport, cleared again now that only cells are
+  // drawn, and the ideal view's texture. From OGRE's own objects.
+  Ogre::Viewport* window_view = projector_->outputWindow()->renderWindow()->getViewport(0);
+  EXPECT_TRUE(window_view->getClearEveryFrame());
+  EXPECT_EQ(window_view->getClearBuffers(), all_three);
+  int textures = 0;
+  auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
+  while (targets.hasMoreElements())
+  {
+    Ogre::RenderTarget* target = targets.getNext();
+    if (target->getName().find("rviz_projector_warp_texture_") == std::string::npos || target->getNumViewports() == 0)
+    {
+      continue;
+    }
+    ++textures;
+    EXPECT_TRUE(target->getViewport(0)->getClearEveryFrame()) << target->getName();
+    EXPECT_EQ(target->getViewport(0)->getClearBuffers(), all_three) << target->getName();
+  }
+  EXPECT_EQ(textures, 1) << "the warp's texture among OGRE's render targets";
 }
