@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fuzz_input.h"
+#include "rviz_projector/core/occluder_union.h"
 #include "rviz_projector/core/projection_mask.h"
 
 using namespace rviz_projector;
@@ -119,6 +120,33 @@ void checkColumns(Input& in, const std::vector<Vec2>& points)
     }
   }
 }
+
+/// The columns' union (occluder_union.h): formed or refused, never a crash; when formed, its
+/// vertices are finite, on the floor or at the height, with unit normals.
+void checkUnion(Input& in, const std::vector<Vec2>& points)
+{
+  const double height = in.size(3.0), margin = in.size(0.5);
+  OccluderUnion merged;
+  const std::vector<Vec2> none;
+  const bool formed = merged.build({{&points, margin}, {&none, margin}}, height);
+  if (!formed)
+  {
+    RP_FUZZ_CHECK(merged.triangles().empty());
+    return;
+  }
+  RP_FUZZ_CHECK(merged.triangles().size() % 3 == 0);
+  if (!(std::isfinite(height) && height > 0.0 && std::isfinite(margin) && margin > 0.0))
+  {
+    RP_FUZZ_CHECK(merged.triangles().empty());
+    return;
+  }
+  for (const MeshVertex& v : merged.triangles())
+  {
+    RP_FUZZ_CHECK(std::isfinite(v.position.x) && std::isfinite(v.position.y));
+    RP_FUZZ_CHECK(v.position.z == 0.0 || v.position.z == height);
+    RP_FUZZ_CHECK(std::fabs(std::hypot(v.normal.x, v.normal.y, v.normal.z) - 1.0) < 1e-9);
+  }
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -134,5 +162,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   checkCells(in, points);
   checkColumns(in, points);
+  checkUnion(in, points);
   return 0;
 }

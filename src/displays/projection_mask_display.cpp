@@ -499,9 +499,18 @@ void ProjectionMaskDisplay::rebuild()
   const double height = height_property_->getFloat();
   const double margin = margin_property_->getFloat();
   // A scan thinned to cells (more than kMaxScanColumns returns) widens by half a cell, as a cloud.
-  occluders_.build(scan_points_, height, scan_in_cells_ ? margin + 0.5 * cloudCell(margin) : margin);
+  const double scan_margin = scan_in_cells_ ? margin + 0.5 * cloudCell(margin) : margin;
   // Cloud points stand for their cells: the wider margin covers every point of the cell.
-  occluders_.append(cloud_points_, height, margin + 0.5 * cloudCell(margin));
+  const double cloud_margin = margin + 0.5 * cloudCell(margin);
+  // The columns' union drawn once (the same solid without the overlapping columns' overdraw); the
+  // columns themselves when the union is not formed (core occluder_union.h).
+  merged_ = union_.build({{&scan_points_, scan_margin}, {&cloud_points_, cloud_margin}}, height);
+  if (!merged_)
+  {
+    occluders_.build(scan_points_, height, scan_margin);
+    occluders_.append(cloud_points_, height, cloud_margin);
+  }
+  const std::vector<MeshVertex>& solid = merged_ ? union_.triangles() : occluders_.triangles();
   if (!(height > 0.0 && margin > 0.0))
   {
     setStatus(rviz::StatusProperty::Warn, "Shape",
@@ -511,8 +520,8 @@ void ProjectionMaskDisplay::rebuild()
   {
     deleteStatus("Shape");
   }
-  occluder_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue::Black);
-  outline_mesh_->setSolidTriangles(occluders_.triangles(), 0.0, Ogre::ColourValue(1.0f, 0.6f, 0.0f, 0.35f));
+  occluder_mesh_->setSolidTriangles(solid, 0.0, Ogre::ColourValue::Black);
+  outline_mesh_->setSolidTriangles(solid, 0.0, Ogre::ColourValue(1.0f, 0.6f, 0.0f, 0.35f));
   redrawAcknowledge();  // in the same frame as the scan's mask
   ProjectionChangeNotifier::notify();
   context_->queueRender();

@@ -20,6 +20,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 
+#include "rviz_projector/core/occluder_union.h"
 #include "rviz_projector/core/projection_mask.h"
 #include "rviz_projector/core/vec2.h"
 #include "rviz_projector/displays/acknowledge_source.h"
@@ -59,7 +60,7 @@ public:
   void load(const rviz::Config& config) override;
 
   /// Occluder columns drawn now (one per used return or cloud point).
-  std::size_t columns() const { return occluders_.columns(); }
+  std::size_t columns() const { return merged_ ? union_.squares() : occluders_.columns(); }
   /// The Acknowledge part (tests read its tracks) and the arcs' triangles drawn now.
   const AcknowledgeSource& acknowledgeSource() const { return ack_; }
   std::size_t acknowledgeTriangles() const;
@@ -115,6 +116,8 @@ private:
   ros::Time scan_stamp_;   // zero: no scan in the mask
   ros::Time cloud_stamp_;  // zero: no cloud in the mask
   OccluderMesh occluders_;
+  OccluderUnion union_;  ///< what is drawn, unless it could not be formed (then occluders_)
+  bool merged_ = false;   ///< whether union_ is what is drawn
   Ogre::SceneNode* occluder_node_ = nullptr;
   Ogre::SceneNode* outline_node_ = nullptr;
   std::unique_ptr<FloorMesh> occluder_mesh_;
