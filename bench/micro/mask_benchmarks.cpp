@@ -16,6 +16,7 @@
 #include <benchmark/benchmark.h>
 
 #include "headless_ogre.h"
+#include "rviz_projector/core/occluder_union.h"
 #include "rviz_projector/core/projection_mask.h"
 #include "rviz_projector/displays/floor_mesh.h"
 #include "rviz_projector/ros/ros_conversions.h"
@@ -58,7 +59,10 @@ void BM_MaskReturnsOnly(benchmark::State& state)
 }
 BENCHMARK(BM_MaskReturnsOnly)->Name("MaskUpdate/returns only")->Arg(1000)->Unit(benchmark::kMicrosecond);
 
-void BM_MaskUpdate(benchmark::State& state)
+/// A scan's returns -> occluders -> the OGRE mesh: OccluderMesh's columns (the baseline, and what
+/// is drawn beyond OccluderUnion::kMaxSquares returns) or, `merged`, their union drawn once
+/// (OccluderUnion: what the display draws up to that many).
+void maskUpdate(benchmark::State& state, bool merged)
 {
   const std::vector<float> r = ranges(static_cast<std::size_t>(state.range(0)));
   const RigidTransform pose = RigidTransform::fromQuaternion(0, 0, 0.1, 0.995, Vec3{1, 2, 0.3});
@@ -66,15 +70,30 @@ void BM_MaskUpdate(benchmark::State& state)
   FloorMesh mesh(scene, scene->getRootSceneNode());
   std::vector<Vec2> points;
   OccluderMesh occluders;
+  OccluderUnion solid;
   for (auto _ : state)
   {
     scanToFloorPoints(view(r), pose, points);
-    occluders.build(points, 2.0, 0.1);
-    mesh.setSolidTriangles(occluders.triangles(), 0.0, Ogre::ColourValue::Black);
+    if (merged)
+    {
+      benchmark::DoNotOptimize(solid.build({{&points, 0.1}}, 2.0));
+    }
+    else
+    {
+      occluders.build(points, 2.0, 0.1);
+    }
+    mesh.setSolidTriangles(merged ? solid.triangles() : occluders.triangles(), 0.0, Ogre::ColourValue::Black);
   }
-  state.counters["columns"] = static_cast<double>(occluders.columns());
+  state.counters[merged ? "triangles" : "columns"] =
+      static_cast<double>(merged ? solid.triangles().size() / 3 : occluders.columns());
 }
-BENCHMARK(BM_MaskUpdate)->Name("MaskUpdate+Mesh")->Arg(1000)->Arg(5000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(maskUpdate, columns, false)->Name("MaskUpdate+Mesh")->Arg(1000)->Arg(5000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(maskUpdate, union, true)
+    ->Name("MaskUpdate+Union+Mesh")
+    ->Arg(50)
+    ->Arg(100)
+    ->Arg(200)
+    ->Unit(benchmark::kMicrosecond);
 
 /// `points` / 640 rows of 640 points (a 640x480 depth camera: 307200), x y z float + 4 bytes of
 /// intensity, rows padded by 16 bytes: a wall 3 m ahead (x forward), 2.4 m wide, 0..1.8 m high,
