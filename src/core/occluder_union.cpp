@@ -14,11 +14,6 @@ namespace
 // Clipper works on integers: 0.1 mm, relative to the first square's centre.
 constexpr double kScale = 1e4;
 
-bool finite(const Vec2& p)
-{
-  return std::isfinite(p.x) && std::isfinite(p.y);
-}
-
 ClipperLib::cInt toUnits(double metres)
 {
   return ClipperLib::cInt(std::llround(metres * kScale));
@@ -38,16 +33,6 @@ std::vector<Vec2> ring(ClipperLib::Path path, const Vec2& origin, bool ccw)
     out.push_back({origin.x + double(p.X) / kScale, origin.y + double(p.Y) / kScale});
   }
   return out;
-}
-
-double area(const std::vector<Vec2>& r)
-{
-  double twice = 0.0;
-  for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-  {
-    twice += r[j].x * r[i].y - r[i].x * r[j].y;
-  }
-  return 0.5 * twice;
 }
 }  // namespace
 
@@ -70,7 +55,7 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
     }
     for (const Vec2& p : *set.points)
     {
-      if (!finite(p))
+      if (!isFinite(p))
       {
         continue;
       }
@@ -93,7 +78,6 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
   {
     return true;
   }
-  squares_ = squares.size();
   ClipperLib::PolyTree tree;
   try
   {
@@ -101,13 +85,11 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
     clipper.AddPaths(squares, ClipperLib::ptSubject, true);
     if (!clipper.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero))
     {
-      squares_ = 0;
       return false;
     }
   }
   catch (const ClipperLib::clipperException&)  // coordinates out of its range: not with kMaxExtent
   {
-    squares_ = 0;
     return false;
   }
   const double h = height;
@@ -143,11 +125,11 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
   {
     const std::vector<Vec2> outer = ring(node->Contour, origin, true);
     std::vector<std::vector<Vec2>> holes;
-    double expected = area(outer);
+    double expected = signedArea(outer);
     for (const ClipperLib::PolyNode* child : node->Childs)
     {
       holes.push_back(ring(child->Contour, origin, false));
-      expected += area(holes.back());  // negative: clockwise
+      expected += signedArea(holes.back());  // negative: clockwise
     }
     wall(outer);
     for (const std::vector<Vec2>& hole : holes)
@@ -158,7 +140,7 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
     double covered = 0.0;
     for (std::size_t i = 0; i + 2 < top.size(); i += 3)
     {
-      covered += area({top[i], top[i + 1], top[i + 2]});
+      covered += signedArea({top[i], top[i + 1], top[i + 2]});
       const Vec3 up{0.0, 0.0, 1.0};
       triangles_.insert(triangles_.end(), {MeshVertex{{top[i].x, top[i].y, h}, up},
                                            MeshVertex{{top[i + 1].x, top[i + 1].y, h}, up},
@@ -168,10 +150,10 @@ bool OccluderUnion::build(const std::vector<OccluderSquares>& sets, double heigh
     if (!(std::abs(covered - expected) <= 1e-9 * std::max(1.0, std::abs(expected)) + 1e-12))
     {
       triangles_.clear();
-      squares_ = 0;
       return false;
     }
   }
+  squares_ = squares.size();  // only for a union formed
   return true;
 }
 }  // namespace rviz_projector

@@ -174,4 +174,8 @@ std::vector<Vec2> triangulatePolygon(std::vector<Vec2> polygon, std::vector<std:
   }
   return triangles;
 }
+double signedArea(const std::vector<Vec2>& polygon)
+{
+  return 0.5 * twiceArea(polygon);
+}
 }  // namespace rviz_projector

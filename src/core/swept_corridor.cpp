@@ -28,16 +28,6 @@ bool segmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
 }
 
-double signedArea(const std::vector<Vec2>& polygon)
-{
-  double twice = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i)
-  {
-    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
-  }
-  return 0.5 * twice;
-}
-
 using Placement = SweptCorridor::Placement;
 
 Vec2 place(const Placement& at, const Vec2& v)

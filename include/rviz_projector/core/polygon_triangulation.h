@@ -16,4 +16,7 @@ std::vector<Vec2> triangulatePolygon(std::vector<Vec2> outer, std::vector<std::v
 
 /// Whether p is inside the polygon (even-odd; boundary points either way).
 bool insidePolygon(const std::vector<Vec2>& polygon, const Vec2& p);
+
+/// The polygon's area, positive when counter-clockwise (the shoelace formula).
+double signedArea(const std::vector<Vec2>& polygon);
 }  // namespace rviz_projector
