@@ -2,6 +2,7 @@
 // stays within the existing frame budget"): the swept corridor of a rectangular and of a round robot
 // over the next 3 m of a planner's path, rebuilt for a robot somewhere along it. Baseline in the same
 // run: the arrows of the same path, spaced and turned into triangles (what every path update costs).
+#include <cmath>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -29,12 +30,33 @@ void BM_CorridorArrowsBaseline(benchmark::State& state)
   }
 }
 
-void corridor(benchmark::State& state, bool round)
+enum class Shape
 {
-  const std::vector<Vec2>& points = rviz_projector_bench::planarPath(static_cast<std::size_t>(state.range(0)));
+  Rectangle,
+  Circle24,  // a round robot's footprint as move_base publishes it (and the demo): a 24-gon
+  Round
+};
+
+void corridor(benchmark::State& state, Shape shape, bool straight = false)
+{
+  std::vector<Vec2> line;  // a straight aisle of the same number of poses, 2 cm apart
+  for (std::size_t i = 0; straight && i < static_cast<std::size_t>(state.range(0)); ++i)
+  {
+    line.push_back({0.02 * double(i), 0.0});
+  }
+  const std::vector<Vec2>& points =
+      straight ? line : rviz_projector_bench::planarPath(static_cast<std::size_t>(state.range(0)));
   std::vector<double> lengths;
   accumulateArcLengths(points, lengths);
-  const std::vector<Vec2> footprint{{0.4, 0.3}, {-0.2, 0.3}, {-0.2, -0.3}, {0.4, -0.3}};
+  std::vector<Vec2> footprint{{0.4, 0.3}, {-0.2, 0.3}, {-0.2, -0.3}, {0.4, -0.3}};
+  if (shape == Shape::Circle24)
+  {
+    footprint.clear();
+    for (int i = 0; i < 24; ++i)
+    {
+      footprint.push_back({0.3 * std::cos(2.0 * M_PI * i / 24), 0.3 * std::sin(2.0 * M_PI * i / 24)});
+    }
+  }
   CorridorParameters parameters;
   parameters.length = 3.0;
   SweptCorridor swept;
@@ -42,7 +64,7 @@ void corridor(benchmark::State& state, bool round)
   for (auto _ : state)
   {
     start = start + 0.37 < lengths.back() - 3.0 ? start + 0.37 : 0.0;  // the robot drives on
-    if (round)
+    if (shape == Shape::Round)
     {
       swept.buildRound(points, lengths, start, 0.3, parameters);
     }
@@ -57,10 +79,14 @@ void corridor(benchmark::State& state, bool round)
   state.SetLabel("vs=Baseline/CorridorArrows");
 }
 
-void BM_CorridorPolygon(benchmark::State& state) { corridor(state, false); }
-void BM_CorridorRound(benchmark::State& state) { corridor(state, true); }
+void BM_CorridorPolygon(benchmark::State& state) { corridor(state, Shape::Rectangle); }
+void BM_CorridorCircle24(benchmark::State& state) { corridor(state, Shape::Circle24); }
+void BM_CorridorRound(benchmark::State& state) { corridor(state, Shape::Round); }
+void BM_CorridorCircle24Straight(benchmark::State& state) { corridor(state, Shape::Circle24, true); }
 }  // namespace
 
 BENCHMARK(BM_CorridorArrowsBaseline)->Name("Baseline/CorridorArrows")->Arg(5000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CorridorPolygon)->Name("Corridor/Rectangle 3 m")->Arg(5000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CorridorCircle24)->Name("Corridor/24-gon 3 m")->Arg(5000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CorridorCircle24Straight)->Name("Corridor/24-gon 3 m, straight")->Arg(5000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CorridorRound)->Name("Corridor/Round 3 m")->Arg(5000)->Unit(benchmark::kMicrosecond);

@@ -285,6 +285,92 @@ std::vector<Placement> placementsAlong(const std::vector<Vec2>& points, const st
   return placements;
 }
 
+/// Whether the counter-clockwise polygon is convex (no vertex turns right; straight ones allowed).
+bool isConvex(const std::vector<Vec2>& ccw)
+{
+  const std::size_t n = ccw.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (cross(ccw[(i + 1) % n] - ccw[i], ccw[(i + 2) % n] - ccw[(i + 1) % n]) < 0.0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The last placement from `first` on that the footprint reaches by translation alone: the same
+/// heading (within 1e-9 rad) and every position further along the line of the first step (within
+/// 1 um of it, a tenth of Clipper's grid); `first` itself when the next step turns.
+std::size_t translationEnd(const std::vector<Placement>& placements, std::size_t first)
+{
+  const Placement& from = placements[first];
+  if (first + 1 >= placements.size())
+  {
+    return first;
+  }
+  const Vec2 step = placements[first + 1].position - from.position;
+  const double length = norm(step);
+  if (!(length > 0.0))
+  {
+    return first;
+  }
+  const Vec2 along = step * (1.0 / length);
+  std::size_t last = first;
+  for (std::size_t k = first + 1; k < placements.size(); ++k)
+  {
+    const Placement& to = placements[k];
+    const bool same_heading = std::abs(cross(from.forward, to.forward)) < 1e-9 && dot(from.forward, to.forward) > 0.0;
+    const bool on_line = std::abs(cross(along, to.position - from.position)) < 1e-6;
+    const bool onwards = dot(along, to.position - placements[k - 1].position) > 0.0;
+    if (!(same_heading && on_line && onwards))
+    {
+      break;
+    }
+    last = k;
+  }
+  return last;
+}
+
+/// The area a convex counter-clockwise footprint sweeps moving without turning from `from` to
+/// `to` (same heading): the convex hull of its two places, counter-clockwise. Its rim is the
+/// footprint's front at `to` and its back at `from`, joined at the two vertices farthest to either
+/// side of the motion.
+std::vector<Vec2> translationHull(const std::vector<Vec2>& footprint, const Placement& from, const Placement& to)
+{
+  const std::size_t n = footprint.size();
+  const Vec2 motion = to.position - from.position;
+  std::vector<Vec2> placed(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    placed[i] = place(from, footprint[i]);
+  }
+  if (!(norm(motion) > 0.0))
+  {
+    return placed;
+  }
+  std::size_t left = 0, right = 0;  // the vertices farthest left and right of the motion
+  for (std::size_t i = 1; i < n; ++i)
+  {
+    if (cross(motion, placed[i]) > cross(motion, placed[left])) left = i;
+    if (cross(motion, placed[i]) < cross(motion, placed[right])) right = i;
+  }
+  std::vector<Vec2> hull;
+  // Counter-clockwise from the right one to the left one the rim faces forward (moved to `to`),
+  // from the left one back to the right one it faces backward (stays at `from`).
+  for (std::size_t i = right;; i = (i + 1) % n)
+  {
+    hull.push_back(placed[i] + motion);
+    if (i == left) break;
+  }
+  for (std::size_t i = left;; i = (i + 1) % n)
+  {
+    hull.push_back(placed[i]);
+    if (i == right) break;
+  }
+  return hull;
+}
+
 /// Pieces of the swept area, counter-clockwise, for Clipper's union.
 class Pieces
 {
@@ -395,14 +481,27 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
     }
     pieces.addPolygon(placed);
   }
-  for (std::size_t i = 0; i + 1 < placements_.size(); ++i)
+  // Where the footprint only translates (a straight stretch: the same heading, positions on one
+  // line), its sweep from the first to the last position of the stretch is the same as through
+  // every position between: one step instead of many, and for a convex footprint one piece, the
+  // hull of the two places (its sweep under a translation, exactly).
+  const bool convex = isConvex(footprint);
+  for (std::size_t i = 0; i + 1 < placements_.size();)
   {
+    const std::size_t j = translationEnd(placements_, i);
+    if (j > i && convex)
+    {
+      pieces.addPolygon(translationHull(footprint, placements_[i], placements_[j]));
+      i = j;
+      continue;
+    }
+    const std::size_t next = std::max(j, i + 1);
     for (std::size_t e = 0; e < footprint.size(); ++e)
     {
       const Vec2& a = footprint[e];
       const Vec2& b = footprint[(e + 1) % footprint.size()];
       const Vec2 a0 = place(placements_[i], a), b0 = place(placements_[i], b);
-      const Vec2 a1 = place(placements_[i + 1], a), b1 = place(placements_[i + 1], b);
+      const Vec2 a1 = place(placements_[next], a), b1 = place(placements_[next], b);
       // An edge that moves inwards all along (its outward normal against both ends' motion; the
       // motion of a rigid step is linear along the edge) only passes over what was already covered.
       const Vec2 outward{b0.y - a0.y, a0.x - b0.x};
@@ -412,6 +511,7 @@ void SweptCorridor::build(const std::vector<Vec2>& points, const std::vector<dou
       }
       pieces.addQuad(a0, b0, a1, b1);
     }
+    i = next;
   }
   finish(pieces.rims(), {sideVertex(footprint, 1, true), sideVertex(footprint, -1, true), sideVertex(footprint, 1, false),
                          sideVertex(footprint, -1, false)},

@@ -193,6 +193,206 @@ TEST(SweptCorridor, RectangleRoundAnArcIsNotAFixedOffset)
   EXPECT_NEAR(outer, widest, 1e-3);
 }
 
+double bandArea(const std::vector<Vec2>& triangles)
+{
+  double area = 0.0;
+  for (std::size_t i = 0; i + 2 < triangles.size(); i += 3)
+  {
+    const Vec2 &a = triangles[i], &b = triangles[i + 1], &c = triangles[i + 2];
+    area += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  return area;
+}
+
+std::vector<Vec2> regularPolygon(int n, double radius)
+{
+  std::vector<Vec2> polygon;
+  for (int i = 0; i < n; ++i)
+  {
+    polygon.push_back({radius * std::cos(2.0 * M_PI * i / n), radius * std::sin(2.0 * M_PI * i / n)});
+  }
+  return polygon;
+}
+
+TEST(SweptCorridor, RoundRobotPublishedAsAPolygonSweepsItsHullOnAStraight)
+{
+  // A round robot as move_base publishes its footprint: a 24-gon of radius 0.3 (vertices at 0, 15,
+  // ... degrees, so one at 90 and one at 270). By hand, driving 2 m straight along x from x = 1: the
+  // swept area is the polygon's area, n/2 r^2 sin(2 pi / n), plus its width 2r times 2 m, between
+  // the rims y = +-0.3 from x = 1 to x = 3.
+  const Path path = straightPath(5.0);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 2.0;
+  corridor.build(path.points, path.lengths, 1.0, regularPolygon(24, 0.3), parameters);
+  const double expected = 12.0 * 0.09 * std::sin(2.0 * M_PI / 24.0) + 0.6 * 2.0;
+  EXPECT_NEAR(expected, bandArea(corridor.band()), 1e-4);
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    double low = INFINITY, high = -INFINITY;
+    for (const Vec2& p : line)
+    {
+      EXPECT_LE(std::abs(p.y), 0.3 + 1e-4) << p.x << ", " << p.y;
+      if (std::abs(std::abs(p.y) - 0.3) < 1e-4)
+      {
+        low = std::min(low, p.x);
+        high = std::max(high, p.x);
+      }
+    }
+    EXPECT_NEAR(1.0, low, 1e-4) << "the rim leaves the robot's side where it starts";
+    EXPECT_NEAR(3.0, high, 1e-4) << "and reaches the side of the robot at its last place";
+  }
+  for (const Vec2& p : {Vec2{1.0, 0.299}, Vec2{2.0, -0.299}, Vec2{3.299, 0.0}, Vec2{0.701, 0.0}})
+  {
+    EXPECT_TRUE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+  for (const Vec2& p : {Vec2{2.0, 0.301}, Vec2{3.301, 0.0}, Vec2{0.699, 0.0}})
+  {
+    EXPECT_FALSE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+}
+
+TEST(SweptCorridor, StraightIntoAnArcIsExactOnBoth)
+{
+  // 1 m straight along x, then a left turn of radius 2 about (1, 2). The rectangle starts at x = 0.5
+  // and sweeps 3 m: by hand, on the straight (centre x <= 1) its rims are y = +-0.3; well inside the
+  // arc the inner rim is 2 - 0.3 = 1.7 m from the centre of the turn, the outer one is traced by the
+  // front right corner, sqrt(0.4^2 + 2.3^2) m from it.
+  Path path;
+  for (int i = 0; i <= 100; ++i)
+  {
+    path.points.push_back({0.01 * i, 0.0});
+  }
+  for (int i = 1; i <= 300; ++i)
+  {
+    const double a = 1.5 * i / 300;
+    path.points.push_back({1.0 + 2.0 * std::sin(a), 2.0 - 2.0 * std::cos(a)});
+  }
+  accumulateArcLengths(path.points, path.lengths);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 3.0;
+  corridor.build(path.points, path.lengths, 0.5, kRectangle, parameters);
+  ASSERT_EQ(2u, corridor.edgeLines().size());
+  const Vec2 centre{1.0, 2.0};
+  const double outer = std::sqrt(0.4 * 0.4 + 2.3 * 2.3);
+  int straight = 0, arc = 0;
+  for (const std::vector<Vec2>& line : corridor.edgeLines())
+  {
+    for (const Vec2& p : line)
+    {
+      if (p.x <= 0.7)  // beside the robot while it is on the straight
+      {
+        ++straight;
+        EXPECT_NEAR(0.3, std::abs(p.y), 1e-4) << p.x << ", " << p.y;
+        continue;
+      }
+      const double angle = std::atan2(p.x - centre.x, centre.y - p.y);  // along the turn from x = 1
+      if (angle < 0.45 / 2.0 || angle > 2.5 / 2.0 - 0.05)
+      {
+        continue;  // where the rims change from one to the other, and at the far end
+      }
+      ++arc;
+      const double r = distance(p, centre);
+      EXPECT_NEAR(r < 2.0 ? 1.7 : outer, r, 1e-3) << "at " << angle << " rad";
+    }
+  }
+  EXPECT_GT(straight, 1);
+  EXPECT_GT(arc, 10);
+  // The band covers the centre line from start to end without a gap where the straight meets the arc.
+  for (double s = 0.5; s <= 3.5; s += 0.01)
+  {
+    const Vec2 p = pointAtArcLength(path.points, path.lengths, s);
+    EXPECT_TRUE(covered(corridor.band(), p)) << "s = " << s;
+  }
+}
+
+TEST(SweptCorridor, NonConvexFootprintOnADiagonalStraight)
+{
+  // The L below, driving 1 m along the diagonal y = x: by hand, in the robot's frame (x along the
+  // diagonal, y to its left) the swept area is x in [-0.2, 1.4], |y| <= 0.3, except its notch
+  // behind the start (x < 0, y > 0.1), which nothing ever passes.
+  const std::vector<Vec2> l_shape{{0.4, 0.3}, {0.0, 0.3}, {0.0, 0.1}, {-0.2, 0.1}, {-0.2, -0.3}, {0.4, -0.3}};
+  Path path;
+  for (int i = 0; i <= 100; ++i)
+  {
+    path.points.push_back({0.03 * i, 0.03 * i});
+  }
+  accumulateArcLengths(path.points, path.lengths);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 1.0;
+  corridor.build(path.points, path.lengths, 1.0, l_shape, parameters);
+  const Vec2 origin = pointAtArcLength(path.points, path.lengths, 1.0);
+  const Vec2 forward{std::sqrt(0.5), std::sqrt(0.5)};
+  auto world = [&](double x, double y) { return origin + forward * x + perpendicular(forward) * y; };
+  EXPECT_FALSE(covered(corridor.band(), world(-0.1, 0.2))) << "the notch behind the start";
+  for (const Vec2& p : {world(-0.19, 0.0), world(-0.1, -0.29), world(0.5, 0.29), world(1.39, -0.29)})
+  {
+    EXPECT_TRUE(covered(corridor.band(), p));
+  }
+  for (const Vec2& p : {world(0.5, 0.31), world(0.5, -0.31), world(1.41, 0.0), world(-0.21, 0.0)})
+  {
+    EXPECT_FALSE(covered(corridor.band(), p));
+  }
+  const double expected = 0.6 * 1.6 - 0.2 * 0.2;  // the whole rectangle less the notch
+  EXPECT_NEAR(expected, bandArea(corridor.band()), 1e-4);
+}
+
+TEST(SweptCorridor, NotchInTheSideIsSweptOverByWhatFollowsIt)
+{
+  // A notch in the left side (x in [-0.1, 0.1], y > 0.2): driving 1 m straight, the part behind it
+  // passes over where the notch started, the part ahead of it over where it ends. By hand the
+  // swept area is the whole rectangle x in [-0.2, 1.4], |y| <= 0.3 (area 0.96), notches included.
+  const std::vector<Vec2> notched{{0.4, 0.3},  {0.1, 0.3},   {0.1, 0.2},   {-0.1, 0.2},
+                                  {-0.1, 0.3}, {-0.2, 0.3},  {-0.2, -0.3}, {0.4, -0.3}};
+  ASSERT_EQ("", footprintProblem(notched));
+  const Path path = straightPath(5.0);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 1.0;
+  corridor.build(path.points, path.lengths, 0.0, notched, parameters);
+  EXPECT_NEAR(0.96, bandArea(corridor.band()), 1e-4);
+  for (const Vec2& p : {Vec2{0.0, 0.29}, Vec2{1.0, 0.29}})
+  {
+    EXPECT_TRUE(covered(corridor.band(), p)) << "where the notch started and ended: " << p.x << ", " << p.y;
+  }
+}
+
+TEST(SweptCorridor, ASideStepBetweenTwoPlacesIsFollowed)
+{
+  // Straight along y = 0 to x = 1, a side step to y = 0.1 by x = 1.05, straight along y = 0.1 on.
+  // With a heading chord of 5 cm and steps of 20 cm from s = 0.15 no place sees the side step's
+  // heading: every place has heading 0, but they are not all on one line. By hand, the rectangle
+  // stays within |y| <= 0.3 while on the first straight (up to s = 0.95, x = 0.95) and within
+  // y in [-0.2, 0.4] on the second (from x = 1.15 on): nothing is swept at (0.5, 0.31) or at
+  // (2.3, -0.205), which one translation from the first place to the last would cover.
+  Path path;
+  for (int i = 0; i <= 100; ++i)
+  {
+    path.points.push_back({0.01 * i, 0.0});
+  }
+  for (int i = 0; i <= 300; ++i)
+  {
+    path.points.push_back({1.05 + 0.01 * i, 0.1});
+  }
+  accumulateArcLengths(path.points, path.lengths);
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = 2.0;
+  parameters.heading_chord = 0.05;
+  corridor.build(path.points, path.lengths, 0.15, kRectangle, parameters);
+  for (const Vec2& p : {Vec2{0.5, 0.31}, Vec2{2.3, -0.205}})
+  {
+    EXPECT_FALSE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+  for (const Vec2& p : {Vec2{0.5, 0.29}, Vec2{2.3, 0.39}, Vec2{2.3, -0.19}})
+  {
+    EXPECT_TRUE(covered(corridor.band(), p)) << p.x << ", " << p.y;
+  }
+}
+
 TEST(SweptCorridor, NonConvexFootprintLeavesItsNotchUnswept)
 {
   // An L: the rear left quarter is cut away (x < 0 and y > 0.1).
