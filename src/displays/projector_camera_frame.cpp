@@ -184,19 +184,18 @@ void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent
   // The warp's whole mesh covers every pixel of the viewport (its outer vertices lie on the
   // viewport's edges) and tests no depth: clearing the window before it only cost a pass over its
   // colour and depth (and ~200 KB of the GL driver's allocations per frame, scripts/bench --alloc).
-  // Only its occupied cells (software renderer) leave the rest to the clear. Without a pose the
-  // mesh is hidden and the clear blanks the window.
+  // Only its occupied cells (software renderer) leave the rest to the clear, of the colour alone:
+  // the window's depth is not used under the warp. Without a pose the mesh is hidden and the clear
+  // blanks the window. The scene itself (no warp) needs colour, depth and stencil.
   const bool mesh_covers = warped && drawable && warp_->coversWindow();
+  const unsigned clear = !warped ? kProjectorClearBuffers : mesh_covers ? 0u : kWarpCellsClearBuffers;
   if (Ogre::Viewport* viewport = output_->viewport())
   {
     if (viewport->getCamera() != camera)
     {
       viewport->setCamera(camera);
     }
-    if (viewport->getClearEveryFrame() == mesh_covers)
-    {
-      setProjectorClear(*viewport, !mesh_covers);
-    }
+    setClearedBuffers(*viewport, clear);
   }
   warp_->setVisibilityMask(drawable ? vis_bit_ : 0u);
   output_->setVisibilityMask(image_space ? ~0u : !drawable ? 0u : warped ? ~0u : vis_bit_);

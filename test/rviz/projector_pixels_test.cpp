@@ -445,7 +445,9 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
                                      projector_->outputWindow()->isVisible(); }));
     return imagePart(grabWhen([&](const QImage& f) { return greenCount(imagePart(f, oracle)) > 20 * 400; }), oracle);
   };
+  auto windowView = [&] { return projector_->outputWindow()->renderWindow()->getViewport(0); };
   const QImage whole = showWith("all");
+  EXPECT_FALSE(windowView()->getClearEveryFrame()) << "the whole mesh covers the window: nothing to clear";
   const QImage occupied = showWith("occupied");
   unsetenv("RVIZ_PROJECTOR_WARP_CELLS");
   ASSERT_FALSE(whole.isNull());
@@ -462,10 +464,11 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
   EXPECT_EQ(differ, 0) << "pixels that differ between the whole mesh and its occupied cells";
   saveShot(occupied, "warp_occupied_cells");
   // Through the lens, both passes too: the window's viewport, cleared again now that only cells are
-  // drawn, and the ideal view's texture. From OGRE's own objects.
-  Ogre::Viewport* window_view = projector_->outputWindow()->renderWindow()->getViewport(0);
+  // drawn (its colour alone: the warp's mesh tests no depth), and the ideal view's texture (all
+  // three). From OGRE's own objects.
+  Ogre::Viewport* window_view = windowView();
   EXPECT_TRUE(window_view->getClearEveryFrame());
-  EXPECT_EQ(window_view->getClearBuffers(), all_three);
+  EXPECT_EQ(window_view->getClearBuffers(), static_cast<unsigned>(Ogre::FBT_COLOUR));
   int textures = 0;
   auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
   while (targets.hasMoreElements())
@@ -480,4 +483,12 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
     EXPECT_EQ(target->getViewport(0)->getClearBuffers(), all_three) << target->getName();
   }
   EXPECT_EQ(textures, 1) << "the warp's texture among OGRE's render targets";
+  // The lens without D again: the scene is drawn into the window itself, which clears its depth and
+  // stencil again (the targets' depth order needs them).
+  info_pub_.publish(projectorInfo(1280, 800, 1900, 639.5, 399.5));
+  EXPECT_TRUE(waitFor([&] { return projector_->hasLens() && !statusOf(projector_, "Distortion").present; }));
+  EXPECT_TRUE(waitFor([&] {
+    window_view = windowView();
+    return window_view->getClearEveryFrame() && window_view->getClearBuffers() == all_three;
+  })) << "clears " << window_view->getClearBuffers();
 }

@@ -4,6 +4,8 @@
 // Mesa's software renderer (llvmpipe) then reads, masks and writes every pixel of the 1280x800
 // buffer on each frame (10 % of projector_host's samples under perf on the demo scene), where a
 // clear of both is a plain fill (doc/dev/performance.md). On a GPU both cost the same.
+// Through a distorting lens the window only shows the warp's mesh, which tests no depth: there
+// the window clears its colour alone, or nothing where the mesh covers all of it.
 #pragma once
 
 #include <OgreViewport.h>
@@ -14,10 +16,29 @@ namespace rviz_projector
 /// colour and depth, plus stencil).
 constexpr unsigned kProjectorClearBuffers = Ogre::FBT_COLOUR | Ogre::FBT_DEPTH | Ogre::FBT_STENCIL;
 
+/// What the window clears under the warp's occupied cells (software renderer): the colour of the
+/// cells it does not draw. Its depth buffer is not used while it shows the warp.
+constexpr unsigned kWarpCellsClearBuffers = Ogre::FBT_COLOUR;
+
 /// Viewport::setClearEveryFrame with kProjectorClearBuffers (its own default would set colour and
 /// depth only again).
 inline void setProjectorClear(Ogre::Viewport& viewport, bool clear)
 {
   viewport.setClearEveryFrame(clear, kProjectorClearBuffers);
+}
+
+/// The buffers `viewport` clears each frame (0: it is not cleared).
+inline unsigned clearedBuffers(const Ogre::Viewport& viewport)
+{
+  return viewport.getClearEveryFrame() ? viewport.getClearBuffers() : 0u;
+}
+
+/// Makes `viewport` clear `buffers` each frame (0: nothing), touching it only when that changes.
+inline void setClearedBuffers(Ogre::Viewport& viewport, unsigned buffers)
+{
+  if (clearedBuffers(viewport) != buffers)
+  {
+    viewport.setClearEveryFrame(buffers != 0u, buffers);
+  }
 }
 }  // namespace rviz_projector
