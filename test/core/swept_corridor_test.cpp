@@ -70,13 +70,23 @@ bool covered(const std::vector<Vec2>& triangles, const Vec2& p)
   return false;
 }
 
+/// The corridor of `footprint` along `path` from arc length `start`, `length` metres, default
+/// parameters otherwise.
+SweptCorridor sweep(const Path& path, double start, const std::vector<Vec2>& footprint, double length,
+                    double heading_chord = CorridorParameters().heading_chord)
+{
+  SweptCorridor corridor;
+  CorridorParameters parameters;
+  parameters.length = length;
+  parameters.heading_chord = heading_chord;
+  corridor.build(path.points, path.lengths, start, footprint, parameters);
+  return corridor;
+}
+
 TEST(SweptCorridor, StraightRectangleSweepsARectangle)
 {
   const Path path = straightPath(5.0);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 2.0;
-  corridor.build(path.points, path.lengths, 1.0, kRectangle, parameters);
+  const SweptCorridor corridor = sweep(path, 1.0, kRectangle, 2.0);
   // By hand: the robot's centre goes from x = 1 to x = 3; its body covers x in [0.8, 3.4], |y| <= 0.3.
   ASSERT_EQ(2u, corridor.edgeLines().size());
   for (const std::vector<Vec2>& line : corridor.edgeLines())
@@ -221,10 +231,7 @@ TEST(SweptCorridor, RoundRobotPublishedAsAPolygonSweepsItsHullOnAStraight)
   // swept area is the polygon's area, n/2 r^2 sin(2 pi / n), plus its width 2r times 2 m, between
   // the rims y = +-0.3 from x = 1 to x = 3.
   const Path path = straightPath(5.0);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 2.0;
-  corridor.build(path.points, path.lengths, 1.0, regularPolygon(24, 0.3), parameters);
+  const SweptCorridor corridor = sweep(path, 1.0, regularPolygon(24, 0.3), 2.0);
   const double expected = 12.0 * 0.09 * std::sin(2.0 * M_PI / 24.0) + 0.6 * 2.0;
   EXPECT_NEAR(expected, bandArea(corridor.band()), 1e-4);
   ASSERT_EQ(2u, corridor.edgeLines().size());
@@ -270,10 +277,7 @@ TEST(SweptCorridor, StraightIntoAnArcIsExactOnBoth)
     path.points.push_back({1.0 + 2.0 * std::sin(a), 2.0 - 2.0 * std::cos(a)});
   }
   accumulateArcLengths(path.points, path.lengths);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 3.0;
-  corridor.build(path.points, path.lengths, 0.5, kRectangle, parameters);
+  const SweptCorridor corridor = sweep(path, 0.5, kRectangle, 3.0);
   ASSERT_EQ(2u, corridor.edgeLines().size());
   const Vec2 centre{1.0, 2.0};
   const double outer = std::sqrt(0.4 * 0.4 + 2.3 * 2.3);
@@ -320,10 +324,7 @@ TEST(SweptCorridor, NonConvexFootprintOnADiagonalStraight)
     path.points.push_back({0.03 * i, 0.03 * i});
   }
   accumulateArcLengths(path.points, path.lengths);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 1.0;
-  corridor.build(path.points, path.lengths, 1.0, l_shape, parameters);
+  const SweptCorridor corridor = sweep(path, 1.0, l_shape, 1.0);
   const Vec2 origin = pointAtArcLength(path.points, path.lengths, 1.0);
   const Vec2 forward{std::sqrt(0.5), std::sqrt(0.5)};
   auto world = [&](double x, double y) { return origin + forward * x + perpendicular(forward) * y; };
@@ -349,10 +350,7 @@ TEST(SweptCorridor, NotchInTheSideIsSweptOverByWhatFollowsIt)
                                   {-0.1, 0.3}, {-0.2, 0.3},  {-0.2, -0.3}, {0.4, -0.3}};
   ASSERT_EQ("", footprintProblem(notched));
   const Path path = straightPath(5.0);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 1.0;
-  corridor.build(path.points, path.lengths, 0.0, notched, parameters);
+  const SweptCorridor corridor = sweep(path, 0.0, notched, 1.0);
   EXPECT_NEAR(0.96, bandArea(corridor.band()), 1e-4);
   for (const Vec2& p : {Vec2{0.0, 0.29}, Vec2{1.0, 0.29}})
   {
@@ -378,11 +376,7 @@ TEST(SweptCorridor, ASideStepBetweenTwoPlacesIsFollowed)
     path.points.push_back({1.05 + 0.01 * i, 0.1});
   }
   accumulateArcLengths(path.points, path.lengths);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 2.0;
-  parameters.heading_chord = 0.05;
-  corridor.build(path.points, path.lengths, 0.15, kRectangle, parameters);
+  const SweptCorridor corridor = sweep(path, 0.15, kRectangle, 2.0, 0.05);
   for (const Vec2& p : {Vec2{0.5, 0.31}, Vec2{2.3, -0.205}})
   {
     EXPECT_FALSE(covered(corridor.band(), p)) << p.x << ", " << p.y;
@@ -399,10 +393,7 @@ TEST(SweptCorridor, NonConvexFootprintLeavesItsNotchUnswept)
   const std::vector<Vec2> l_shape{{0.4, 0.3}, {0.0, 0.3}, {0.0, 0.1}, {-0.2, 0.1}, {-0.2, -0.3}, {0.4, -0.3}};
   ASSERT_EQ("", footprintProblem(l_shape));
   const Path path = straightPath(5.0);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 1.0;
-  corridor.build(path.points, path.lengths, 1.0, l_shape, parameters);
+  const SweptCorridor corridor = sweep(path, 1.0, l_shape, 1.0);
   // The robot starts at x = 1: behind it, left of y = 0.1, nothing ever passes.
   EXPECT_FALSE(covered(corridor.band(), {0.9, 0.2}));
   EXPECT_TRUE(covered(corridor.band(), {0.9, 0.0}));
@@ -422,19 +413,16 @@ TEST(SweptCorridor, NonConvexFootprintLeavesItsNotchUnswept)
 TEST(SweptCorridor, ClippedAtTheDestination)
 {
   const Path path = straightPath(2.0);
-  SweptCorridor corridor;
-  CorridorParameters parameters;
-  parameters.length = 3.0;
-  corridor.build(path.points, path.lengths, 1.5, kRectangle, parameters);
+  const SweptCorridor corridor = sweep(path, 1.5, kRectangle, 3.0);
   double farthest = -INFINITY;
   for (const Vec2& p : corridor.band())
   {
     farthest = std::max(farthest, p.x);
   }
   EXPECT_NEAR(2.4, farthest, 1e-4) << "the robot's front at the destination (x = 2), no further";
-  corridor.build(path.points, path.lengths, 2.0, kRectangle, parameters);
-  EXPECT_TRUE(corridor.band().empty()) << "standing at the destination: nothing left to sweep";
-  EXPECT_TRUE(corridor.edges().empty());
+  const SweptCorridor there = sweep(path, 2.0, kRectangle, 3.0);
+  EXPECT_TRUE(there.band().empty()) << "standing at the destination: nothing left to sweep";
+  EXPECT_TRUE(there.edges().empty());
 }
 
 TEST(SweptCorridor, BadFootprintsAreRefusedWithAReason)
