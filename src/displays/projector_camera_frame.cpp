@@ -162,13 +162,18 @@ bool ProjectorCameraDisplay::prepareFrame()
   return true;
 }
 
-void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent& /*event*/)
+void ProjectorCameraDisplay::updateVisibilityBits()
 {
-  // rviz's camera display does the same: other camera-like displays change the displays' bits.
   if (visibility_property_)
   {
     visibility_property_->update();
   }
+}
+
+void ProjectorCameraDisplay::preRenderTargetUpdate(const Ogre::RenderTargetEvent& /*event*/)
+{
+  // rviz's camera display does the same: other camera-like displays change the displays' bits.
+  updateVisibilityBits();
   // The frustum never shows in the projector's own view.
   overlay_->setFootprintVisibilityFlags(~vis_bit_);
   // A pattern, then the crosshairs: their cameras see only them (nothing else is in their scenes),

@@ -72,11 +72,6 @@ OgreResourceCounts ogreResourceCounts(Ogre::SceneManager* scene)
   counts.scene_nodes = scene ? SceneNodeList::count(*scene) : 0;
   return counts;
 }
-
-std::string displayLabel(const rviz::Display& display)
-{
-  return display.getName().toStdString() + " (" + display.getClassId().toStdString() + ")";
-}
 }  // namespace
 
 HostDiagnostics::HostDiagnostics(HostSession& session) : session_(session)
@@ -174,7 +169,9 @@ void HostDiagnostics::displaysStatus(diagnostic_updater::DiagnosticStatusWrapper
     }
     ++count;
     const std::string label = displayLabel(*display);
-    status.add(label, display->isEnabled() ? "enabled" : "disabled");
+    status.add(label, session_.parked(display) ? std::string(kParkedDisplay)
+                      : display->isEnabled()     ? "enabled"
+                                                 : "disabled");
     for (const DisplayStatusLine& line : displayStatusLines(*display))
     {
       status.add(label + " / " + line.name, line.text);

@@ -28,4 +28,9 @@ std::vector<DisplayStatusLine> displayStatusLines(const rviz::Display& display)
   }
   return lines;
 }
+
+std::string displayLabel(const rviz::Display& display)
+{
+  return display.getName().toStdString() + " (" + display.getClassId().toStdString() + ")";
+}
 }  // namespace rviz_projector

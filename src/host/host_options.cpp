@@ -39,6 +39,10 @@ HostOptionsResult parseHostOptions(const std::vector<std::string>& args)
     {
       result.options.watch = true;
     }
+    else if (arg == "--all-displays")
+    {
+      result.options.all_displays = true;
+    }
     else if (!arg.empty() && arg[0] == '-')
     {
       result.error = "unknown option '" + arg + "'";
@@ -63,7 +67,8 @@ HostOptionsResult parseHostOptions(const std::vector<std::string>& args)
 
 std::string hostUsage()
 {
-  return "usage: rosrun rviz_projector projector_host [--watch] [--keep-alive SECONDS] CONFIG.rviz\n"
+  return "usage: rosrun rviz_projector projector_host [--watch] [--keep-alive SECONDS] [--all-displays]\n"
+         "       CONFIG.rviz\n"
          "\n"
          "Shows the output window of every ProjectorCamera in CONFIG.rviz (a config saved from rviz),\n"
          "with all its displays, but without rviz's main window and without rendering a main view.\n"
@@ -71,6 +76,8 @@ std::string hostUsage()
          "  --watch, -w   reload when CONFIG.rviz changes (as 'rosservice call ~reload' does)\n"
          "  --keep-alive SECONDS   while a projector shows displays of other packages, render at least\n"
          "                this often (default 1; 0: only when their scene graph changes)\n"
+         "  --all-displays   also run the displays that no ProjectorCamera shows (by default they are\n"
+         "                not run: nothing else is shown here, and they only cost CPU)\n"
          "  --help, -h    this text\n"
          "\n"
          "Services: ~reload (std_srvs/Trigger). Diagnostics on /diagnostics.\n"

@@ -20,6 +20,8 @@ struct HostOptions
   std::string config;  ///< the .rviz file
   bool watch = false;  ///< reload when the file changes
   double keep_alive = 1.0;  ///< seconds; 0: no keep-alive frames (RenderPolicy, render_policy.h)
+  /// Run every enabled display, also those no ProjectorCamera shows (HostSession parks them).
+  bool all_displays = false;
 };
 
 struct HostOptionsResult

@@ -1,5 +1,7 @@
 #include "host_session.h"
 
+#include <algorithm>
+
 #include <OgreRenderTargetListener.h>
 #include <OgreRenderWindow.h>
 #include <rviz/display.h>
@@ -13,6 +15,7 @@
 #include "rviz_projector/displays/projector_output_window.h"
 #include "host_config.h"
 #include "host_curtain.h"
+#include "host_display_status.h"
 
 namespace rviz_projector
 {
@@ -48,7 +51,8 @@ void collect(rviz::DisplayGroup* group, std::vector<rviz::Display*>& out)
 }
 }  // namespace
 
-HostSession::HostSession(const QString& config_path) : path_(config_path), curtain_(std::make_unique<HostCurtain>())
+HostSession::HostSession(const QString& config_path, bool all_displays)
+  : path_(config_path), curtain_(std::make_unique<HostCurtain>()), all_displays_(all_displays)
 {
   // The main view's panel exists because rviz's manager needs one (view controller, tools); it is
   // never shown and its render window never rendered: rviz's update renders active targets only.
@@ -110,8 +114,10 @@ HostLoadResult HostSession::load(bool first)
     }
   }
   curtain_->cover(shown);
+  parked_.clear();  // the old displays are deleted by the load
   manager_->load(check.manager_config);
   ++generation_;
+  const std::vector<std::string> parked = all_displays_ ? std::vector<std::string>() : parkUnshownDisplays();
   const std::vector<ProjectorCameraDisplay*> now = projectors();
   std::vector<QPointer<ProjectorCameraDisplay>> watched(now.begin(), now.end());
   curtain_->uncoverWhen(
@@ -130,8 +136,48 @@ HostLoadResult HostSession::load(bool first)
   result.warnings = check.warnings;
   result.message = "loaded '" + path_.toStdString() + "': " + std::to_string(check.displays.size()) +
                    " displays, " + std::to_string(check.projectors) + " ProjectorCamera";
+  if (!parked.empty())
+  {
+    std::string names;
+    for (const std::string& name : parked)
+    {
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    result.message += "; not run, as no ProjectorCamera shows them (--all-displays runs them): " + names;
+  }
   Q_EMIT loaded();
   return result;
+}
+
+std::vector<std::string> HostSession::parkUnshownDisplays()
+{
+  // A display is shown by a ProjectorCamera whose Visibility ticks it: its visibility bits hold the
+  // projector's bit (rviz's DisplayVisibilityProperty sets and clears them, groups' ticks included).
+  std::uint32_t shown = 0;
+  for (ProjectorCameraDisplay* projector : projectors())
+  {
+    projector->updateVisibilityBits();  // the loaded ticks, before the first render
+    shown |= projector->visibilityBit();
+  }
+  std::vector<std::string> labels;
+  for (rviz::Display* display : displays())
+  {
+    const bool group = qobject_cast<rviz::DisplayGroup*>(display) != nullptr;
+    if (group || qobject_cast<ProjectorCameraDisplay*>(display) || !display->isEnabled() ||
+        (display->getVisibilityBits() & shown) != 0)
+    {
+      continue;  // groups hold displays (each judged by itself); projectors show; shown ones run
+    }
+    display->setEnabled(false);
+    parked_.push_back(display);
+    labels.push_back(displayLabel(*display));
+  }
+  return labels;
+}
+
+bool HostSession::parked(const rviz::Display* display) const
+{
+  return std::find(parked_.begin(), parked_.end(), display) != parked_.end();
 }
 
 std::uint64_t HostSession::mainViewFrames() const

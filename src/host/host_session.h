@@ -1,7 +1,10 @@
 // projector_host's one rviz: a VisualizationManager with the displays of a .rviz config, without
 // rviz's main window and without rendering a main view (its RenderPanel is never shown and its
 // render window is inactive). Loads the config at start and on reload; a config that fails
-// checkHostConfig() is refused and the running one stays.
+// checkHostConfig() is refused and the running one stays. Displays that no ProjectorCamera shows
+// (none ticks them in its Visibility) are not run ("parked": disabled after each load), unless the
+// session runs all displays: nothing but the projectors is shown here, so they would only cost CPU
+// (rviz's TF, Grid and Marker displays of the demo's config: 0.06 of a core, doc/dev/performance.md).
 #pragma once
 
 #ifndef Q_MOC_RUN
@@ -32,6 +35,9 @@ namespace rviz_projector
 class HostCurtain;
 class ProjectorCameraDisplay;
 
+/// What the host's diagnostics say of a parked display (HostSession::parked).
+constexpr const char* kParkedDisplay = "not run: no ProjectorCamera shows it (--all-displays runs it)";
+
 struct HostLoadResult
 {
   bool ok = false;
@@ -43,7 +49,8 @@ class HostSession : public QObject
 {
   Q_OBJECT
 public:
-  explicit HostSession(const QString& config_path);
+  /// `all_displays`: run every enabled display, also those no ProjectorCamera shows.
+  HostSession(const QString& config_path, bool all_displays);
   ~HostSession() override;
 
   /// First load. Not ok: the host has nothing to show and exits (kHostExitBadConfig).
@@ -62,6 +69,8 @@ public:
   int generation() const { return generation_; }
   /// Frames rendered into rviz's main view since start: 0 is the point of the host.
   std::uint64_t mainViewFrames() const;
+  /// Whether the last load parked `display` (enabled in the config, shown by no ProjectorCamera).
+  bool parked(const rviz::Display* display) const;
 
 Q_SIGNALS:
   /// The displays were replaced (start or a successful reload).
@@ -69,6 +78,8 @@ Q_SIGNALS:
 
 private:
   HostLoadResult load(bool first);
+  /// Disables the enabled displays that no ProjectorCamera shows; returns their labels.
+  std::vector<std::string> parkUnshownDisplays();
 
   QString path_;
   rviz::RenderPanel* panel_ = nullptr;
@@ -76,5 +87,7 @@ private:
   std::unique_ptr<HostCurtain> curtain_;
   std::unique_ptr<Ogre::RenderTargetListener> main_view_counter_;
   int generation_ = 0;
+  bool all_displays_ = false;
+  std::vector<const rviz::Display*> parked_;  ///< of the running configuration
 };
 }  // namespace rviz_projector

@@ -115,7 +115,7 @@ int main(int argc, char** argv)
   const QString config = QString::fromStdString(parsed.options.config);
   int status = kHostExitOk;
   {
-    HostSession session(config);
+    HostSession session(config, parsed.options.all_displays);
     const HostLoadResult first = session.start();
     logLoad(first);
     if (!first.ok)

@@ -2,7 +2,7 @@
 """Checks the robot deployment files offline (doc/guide/running-on-the-robot.md):
 
 - launch/projector_host.launch, loaded by roslaunch's own loader: config is required; the node is
-  projector_host with the config (and --watch) as arguments, respawned by default, DISPLAY set
+  projector_host with the config (and --watch, --all-displays) as arguments, respawned by default, DISPLAY set
   only when display:= is given; the executable is found in the package.
 - config/robot/*.service: `systemd-analyze verify` (no output, exit 0), the keys the guide
   promises, every `$$NAME` a command uses is set by an Environment= line, and every `bash -c`
@@ -93,6 +93,8 @@ def check_launch(package_dir):
     check(dict(node.env_args).get("DISPLAY") == ":7", "display:=:7 gives env %r" % node.env_args)
     check(not node.respawn, "respawn:=false still respawns")
     check(node.output == "log", "output:=log gives output %r" % node.output)
+    node = load(["config:=/robot/p.rviz", "all_displays:=true"])
+    check(shlex.split(node.args) == ["--all-displays", "/robot/p.rviz"], "all_displays:=true gives args %r" % node.args)
     node = load(["config:=/robot/p.rviz", "respawn:=false", "required:=true"])
     check(node.required and not node.respawn, "required:=true respawn:=false: required %s, respawn %s" % (node.required, node.respawn))
     try:

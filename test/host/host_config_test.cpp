@@ -155,6 +155,9 @@ TEST(HostOptions, ParsesTheCommandLine)
   EXPECT_TRUE(r.options.watch);
   r = parseHostOptions({"-w", "a.rviz"});
   EXPECT_TRUE(r.options.watch);
+  EXPECT_FALSE(parseHostOptions({"a.rviz"}).options.all_displays);
+  EXPECT_TRUE(parseHostOptions({"--all-displays", "a.rviz"}).options.all_displays);
+  EXPECT_NE(rviz_projector::hostUsage().find("--all-displays"), std::string::npos);
   EXPECT_TRUE(parseHostOptions({"--help"}).help);
   EXPECT_EQ(parseHostOptions({}).error, "no config file given");
   EXPECT_EQ(parseHostOptions({"--fast", "a.rviz"}).error, "unknown option '--fast'");

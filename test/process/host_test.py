@@ -378,8 +378,34 @@ class HostTest(unittest.TestCase):
         self.assertEqual(config["Main view frames"], "0", "the host rendered rviz's main view")
         for key in ("OGRE meshes", "OGRE materials", "OGRE textures", "OGRE scene nodes"):
             self.assertGreater(int(config[key]), 0, key)
-        _, displays = self.latest_status("displays")
-        self.assertIn("Marker (rviz/Marker)", displays)
+        _, displays = self.latest_status("displays", after=time.monotonic())  # this host's, not the last test's
+        # Grid, TF and Marker are not ticked in the projector's Visibility: the host does not run
+        # them (nothing else is shown here), and says so; the path display it shows runs.
+        for name in ("Grid (rviz/Grid)", "TF (rviz/TF)", "Marker (rviz/Marker)"):
+            self.assertIn("not run: no ProjectorCamera shows it", displays.get(name, ""), (name, displays))
+        self.assertEqual(displays.get("Projected path (rviz_projector/ProjectedPath)"), "enabled", displays)
+        log = host.log_text()
+        self.assertIn("not run, as no ProjectorCamera shows them (--all-displays runs them): Grid (rviz/Grid), "
+                      "TF (rviz/TF), Marker (rviz/Marker)", log)
+
+    def test_all_displays_runs_the_displays_no_projector_shows(self):
+        self.start_showing(os.path.join(CONFIGS, "host.rviz"), args=("--all-displays",))
+        _, displays = self.latest_status("displays", after=time.monotonic())
+        for name in ("Grid (rviz/Grid)", "TF (rviz/TF)", "Marker (rviz/Marker)",
+                     "Projected path (rviz_projector/ProjectedPath)"):
+            self.assertEqual(displays.get(name), "enabled", (name, displays))
+
+    def test_a_display_ticked_in_the_projector_runs(self):
+        # rviz's Marker ticked in the projector's Visibility (Grid and TF not): the host runs the
+        # Marker (it is shown) and still parks the other two.
+        config = self.config_copy(replace={"      Frame rate limit: 30\n": "      Frame rate limit: 30\n"
+                                           "      Visibility:\n        Marker: true\n        Projected path: true\n"
+                                           "        Grid: false\n        TF: false\n        Value: true\n"})
+        self.start_showing(config)
+        _, displays = self.latest_status("displays", after=time.monotonic())
+        self.assertEqual(displays.get("Marker (rviz/Marker)"), "enabled", displays)
+        for name in ("Grid (rviz/Grid)", "TF (rviz/TF)"):
+            self.assertIn("not run", displays.get(name, ""), (name, displays))
 
     def check_renders_only_on_change(self, config, allowed_idle_frames):
         host, _ = self.start_showing(config)

@@ -94,6 +94,9 @@ public:
   bool hasLens() const { return pipeline_.hasLens(); }
   /// The visibility bit used by the projector view (0 when none could be allocated).
   std::uint32_t visibilityBit() const { return vis_bit_; }
+  /// Sets the displays' visibility bits from the Visibility ticks now (rviz applies them when the
+  /// property updates: before each of this view's renders, so not yet right after a config load).
+  void updateVisibilityBits();
   /// What the display is doing now (frame rate, data ages, blanking, window), for diagnostics.
   ProjectorCameraHealth health() const;
   /// Motion compensation: the last prediction and the time it was made for.
