@@ -2,7 +2,7 @@
 // smallest input that broke an invariant, written as the behaviour the core must have.
 //
 // A bug found and not fixed yet would be pinned by a DISABLED_ test (and an RP_FUZZ_SKIP_KNOWN_BUG
-// in fuzz/); the three found so far are fixed.
+// in fuzz/); the ones found so far are fixed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +99,24 @@ TEST(CoreRegression, ArrowOutlineOfADenormalLengthHasFiniteCorners)
     {
       EXPECT_TRUE(isFinite(c)) << c.x << ", " << c.y;
     }
+  }
+}
+
+// fuzz_shapes (CI of 28 Nov): an arrow 7.3e-162 m long, its sizes 2.2e-308 m. norm() squared the
+// length into the denormal range, so its direction was 1.6 % off unit length and so were the
+// shaft's normals (0.984).
+TEST(CoreRegression, ArrowSolidNearTheBottomOfTheDoubleRangeHasUnitNormals)
+{
+  const double tiny = std::numeric_limits<double>::min();  // 2.2250738585072014e-308
+  ArrowDimensions d;
+  d.shaft_length = d.shaft_diameter = d.head_length = d.head_diameter = tiny;
+  std::vector<MeshVertex> mesh;
+  ArrowSolid(Arrow{Vec2{tiny, tiny}, Vec2{7.2566535644953999e-162, tiny}}, d).appendTriangles(mesh);
+  ASSERT_EQ(mesh.size(), ArrowSolid::kVerticesPerArrow);
+  for (const MeshVertex& v : mesh)
+  {
+    ASSERT_TRUE(isFinite(v.position) && isFinite(v.normal));
+    EXPECT_NEAR(1.0, std::sqrt(v.normal.x * v.normal.x + v.normal.y * v.normal.y + v.normal.z * v.normal.z), 1e-6);
   }
 }
 
