@@ -24,10 +24,10 @@ ArrowSolid::ArrowSolid(const Arrow& arrow, const ArrowDimensions& d)
   forward_ = {along.x / exact_length, along.y / exact_length, 0.0};
   side_ = {-forward_.y, forward_.x, 0.0};
   up_ = {0.0, 0.0, 1.0};
-  const double head_length = std::min(std::max(d.head_length, 0.0), length);
+  head_length_ = std::min(std::max(d.head_length, 0.0), length);
   tail_ = {arrow.tail.x, arrow.tail.y, axis_height};
   tip_ = {arrow.tip.x, arrow.tip.y, axis_height};
-  neck_ = tip_ - forward_ * head_length;
+  neck_ = tip_ - forward_ * head_length_;
 }
 
 void ArrowSolid::trianglesOf(const std::vector<Arrow>& arrows, const ArrowDimensions& dimensions,
@@ -50,9 +50,10 @@ void ArrowSolid::appendTriangles(std::vector<MeshVertex>& out) const
   }
   const double step = 2.0 * M_PI / kSides;
   const Vec3 back = forward_ * -1.0;
-  const double head_length = norm(tip_ - neck_);
-  // Cone side normal tilts forward by atan(r / l).
-  const double slope = head_length > 0.0 ? head_radius_ / head_length : 0.0;
+  // Cone side normal: the radial direction tilted forward by atan(r / l), as cos and sin of that
+  // angle (unit for any r and l: a head 1e-162 m long and 0.3 m wide overflowed r / l as a slope).
+  const double tilt = std::atan2(head_radius_, head_length_);
+  const double radial = std::cos(tilt), ahead = std::sin(tilt);
   for (int i = 0; i < kSides; ++i)
   {
     const double a0 = step * i;
@@ -67,9 +68,7 @@ void ArrowSolid::appendTriangles(std::vector<MeshVertex>& out) const
     out.insert(out.end(), {{tail_, back}, {t1, back}, {t0, back}});
     // Cone side.
     const Vec3 c0 = neck_ + r0 * head_radius_, c1 = neck_ + r1 * head_radius_;
-    Vec3 m0 = r0 + forward_ * slope, m1 = r1 + forward_ * slope;
-    m0 = m0 * (1.0 / norm(m0));
-    m1 = m1 * (1.0 / norm(m1));
+    const Vec3 m0 = r0 * radial + forward_ * ahead, m1 = r1 * radial + forward_ * ahead;
     Vec3 m_tip = m0 + m1;
     m_tip = m_tip * (1.0 / norm(m_tip));
     out.insert(out.end(), {{c0, m0}, {c1, m1}, {tip_, m_tip}});

@@ -102,21 +102,29 @@ TEST(CoreRegression, ArrowOutlineOfADenormalLengthHasFiniteCorners)
   }
 }
 
-// fuzz_shapes (CI of 28 Nov): an arrow 7.3e-162 m long, its sizes 2.2e-308 m. norm() squared the
-// length into the denormal range, so its direction was 1.6 % off unit length and so were the
-// shaft's normals (0.984).
+// fuzz_shapes (CI of 28 Nov, then a local run): an arrow 7.3e-162 m long.
+// - Sizes 2.2e-308 m: norm() squared the length into the denormal range, so its direction was 1.6 %
+//   off unit length and so were the shaft's normals (0.984).
+// - A head 0.3 m long (clipped to the arrow's length) and 0.28 m wide: the cone's slope r / l
+//   overflowed and its normals came out zero.
 TEST(CoreRegression, ArrowSolidNearTheBottomOfTheDoubleRangeHasUnitNormals)
 {
   const double tiny = std::numeric_limits<double>::min();  // 2.2250738585072014e-308
-  ArrowDimensions d;
-  d.shaft_length = d.shaft_diameter = d.head_length = d.head_diameter = tiny;
-  std::vector<MeshVertex> mesh;
-  ArrowSolid(Arrow{Vec2{tiny, tiny}, Vec2{7.2566535644953999e-162, tiny}}, d).appendTriangles(mesh);
-  ASSERT_EQ(mesh.size(), ArrowSolid::kVerticesPerArrow);
-  for (const MeshVertex& v : mesh)
+  for (const double head_length : {tiny, 0.3})
   {
-    ASSERT_TRUE(isFinite(v.position) && isFinite(v.normal));
-    EXPECT_NEAR(1.0, std::sqrt(v.normal.x * v.normal.x + v.normal.y * v.normal.y + v.normal.z * v.normal.z), 1e-6);
+    ArrowDimensions d;
+    d.shaft_length = d.shaft_diameter = tiny;
+    d.head_length = head_length;
+    d.head_diameter = head_length == tiny ? tiny : 0.27683823537602154;
+    std::vector<MeshVertex> mesh;
+    ArrowSolid(Arrow{Vec2{tiny, tiny}, Vec2{7.2566535644953999e-162, tiny}}, d).appendTriangles(mesh);
+    ASSERT_EQ(mesh.size(), ArrowSolid::kVerticesPerArrow);
+    for (const MeshVertex& v : mesh)
+    {
+      ASSERT_TRUE(isFinite(v.position) && isFinite(v.normal));
+      EXPECT_NEAR(1.0, std::sqrt(v.normal.x * v.normal.x + v.normal.y * v.normal.y + v.normal.z * v.normal.z), 1e-6)
+          << "head " << head_length << " m";
+    }
   }
 }
 

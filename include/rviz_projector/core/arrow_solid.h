@@ -37,5 +37,6 @@ private:
   Vec3 forward_, side_, up_;
   double shaft_radius_ = 0.0;
   double head_radius_ = 0.0;
+  double head_length_ = 0.0;
 };
 }  // namespace rviz_projector
