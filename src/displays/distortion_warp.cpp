@@ -109,7 +109,7 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
   render_texture_->addListener(listener_);
   viewport_ = render_texture_->addViewport(scene_camera_);
   viewport_->setOverlaysEnabled(false);
-  setProjectorClear(*viewport_, true);
+  setClearedBuffers(*viewport_, kProjectorClearBuffers);
   viewport_->setBackgroundColour(background_);
   viewport_->setVisibilityMask(visibility_mask_);
 

@@ -159,7 +159,7 @@ bool ProjectorOutput::create(bool full_screen, int fsaa, QString& error)
   viewport_->setOverlaysEnabled(false);
   viewport_->setShadowsEnabled(false);
   viewport_->setSkiesEnabled(false);
-  setProjectorClear(*viewport_, true);
+  setClearedBuffers(*viewport_, kProjectorClearBuffers);
   viewport_->setBackgroundColour(background_);
   viewport_->setVisibilityMask(visibility_mask_);
   image_rect_ = PixelRect();

@@ -117,7 +117,10 @@ HostLoadResult HostSession::load(bool first)
   parked_.clear();  // the old displays are deleted by the load
   manager_->load(check.manager_config);
   ++generation_;
-  const std::vector<std::string> parked = all_displays_ ? std::vector<std::string>() : parkUnshownDisplays();
+  if (!all_displays_)
+  {
+    parkUnshownDisplays();
+  }
   const std::vector<ProjectorCameraDisplay*> now = projectors();
   std::vector<QPointer<ProjectorCameraDisplay>> watched(now.begin(), now.end());
   curtain_->uncoverWhen(
@@ -136,12 +139,12 @@ HostLoadResult HostSession::load(bool first)
   result.warnings = check.warnings;
   result.message = "loaded '" + path_.toStdString() + "': " + std::to_string(check.displays.size()) +
                    " displays, " + std::to_string(check.projectors) + " ProjectorCamera";
-  if (!parked.empty())
+  if (!parked_.empty())
   {
     std::string names;
-    for (const std::string& name : parked)
+    for (const rviz::Display* display : parked_)
     {
-      names += (names.empty() ? "" : ", ") + name;
+      names += (names.empty() ? "" : ", ") + displayLabel(*display);
     }
     result.message += "; not run, as no ProjectorCamera shows them (--all-displays runs them): " + names;
   }
@@ -149,7 +152,7 @@ HostLoadResult HostSession::load(bool first)
   return result;
 }
 
-std::vector<std::string> HostSession::parkUnshownDisplays()
+void HostSession::parkUnshownDisplays()
 {
   // A display is shown by a ProjectorCamera whose Visibility ticks it: its visibility bits hold the
   // projector's bit (rviz's DisplayVisibilityProperty sets and clears them, groups' ticks included).
@@ -159,7 +162,6 @@ std::vector<std::string> HostSession::parkUnshownDisplays()
     projector->updateVisibilityBits();  // the loaded ticks, before the first render
     shown |= projector->visibilityBit();
   }
-  std::vector<std::string> labels;
   for (rviz::Display* display : displays())
   {
     const bool group = qobject_cast<rviz::DisplayGroup*>(display) != nullptr;
@@ -170,9 +172,7 @@ std::vector<std::string> HostSession::parkUnshownDisplays()
     }
     display->setEnabled(false);
     parked_.push_back(display);
-    labels.push_back(displayLabel(*display));
   }
-  return labels;
 }
 
 bool HostSession::parked(const rviz::Display* display) const

@@ -4,7 +4,7 @@
 // checkHostConfig() is refused and the running one stays. Displays that no ProjectorCamera shows
 // (none ticks them in its Visibility) are not run ("parked": disabled after each load), unless the
 // session runs all displays: nothing but the projectors is shown here, so they would only cost CPU
-// (rviz's TF, Grid and Marker displays of the demo's config: 0.06 of a core, doc/dev/performance.md).
+// (rviz's TF display alone was 6.6 % of the demo's main thread; doc/dev/performance.md).
 #pragma once
 
 #ifndef Q_MOC_RUN
@@ -78,8 +78,8 @@ Q_SIGNALS:
 
 private:
   HostLoadResult load(bool first);
-  /// Disables the enabled displays that no ProjectorCamera shows; returns their labels.
-  std::vector<std::string> parkUnshownDisplays();
+  /// Disables the enabled displays that no ProjectorCamera shows (into parked_).
+  void parkUnshownDisplays();
 
   QString path_;
   rviz::RenderPanel* panel_ = nullptr;

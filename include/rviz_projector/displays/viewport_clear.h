@@ -20,20 +20,14 @@ constexpr unsigned kProjectorClearBuffers = Ogre::FBT_COLOUR | Ogre::FBT_DEPTH |
 /// cells it does not draw. Its depth buffer is not used while it shows the warp.
 constexpr unsigned kWarpCellsClearBuffers = Ogre::FBT_COLOUR;
 
-/// Viewport::setClearEveryFrame with kProjectorClearBuffers (its own default would set colour and
-/// depth only again).
-inline void setProjectorClear(Ogre::Viewport& viewport, bool clear)
-{
-  viewport.setClearEveryFrame(clear, kProjectorClearBuffers);
-}
-
 /// The buffers `viewport` clears each frame (0: it is not cleared).
 inline unsigned clearedBuffers(const Ogre::Viewport& viewport)
 {
   return viewport.getClearEveryFrame() ? viewport.getClearBuffers() : 0u;
 }
 
-/// Makes `viewport` clear `buffers` each frame (0: nothing), touching it only when that changes.
+/// Makes `viewport` clear `buffers` each frame (0: nothing), touching it only when that changes
+/// (Viewport::setClearEveryFrame's own default would set colour and depth only).
 inline void setClearedBuffers(Ogre::Viewport& viewport, unsigned buffers)
 {
   if (clearedBuffers(viewport) != buffers)
