@@ -20,7 +20,7 @@ rp_is_noetic_ubuntu() { [ -f /opt/ros/noetic/setup.bash ] || grep -q 'VERSION_CO
 rp_packages() {
   local common="build-essential cmake xvfb xauth x11-utils x11-xserver-utils x11-apps imagemagick
     libgl1-mesa-dri mesa-utils xserver-xorg-core xserver-xorg-video-dummy libgtest-dev googletest
-    libbenchmark-dev qtbase5-dev libx11-dev libxext-dev libxdamage-dev libxfixes-dev
+    libbenchmark-dev qtbase5-dev libx11-dev libgl-dev libxext-dev libxdamage-dev libxfixes-dev
     libyaml-cpp-dev xdotool python3-xlib desktop-file-utils lld libpolyclipping-dev pkg-config"
   if rp_is_noetic_ubuntu; then
     echo "$common python3-catkin-pkg ros-noetic-catkin ros-noetic-roscpp ros-noetic-rviz ros-noetic-pluginlib

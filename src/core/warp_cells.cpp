@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace rviz_projector
@@ -79,32 +80,77 @@ std::size_t WarpCellScan::scan(const std::uint32_t* pixels, std::uint32_t width,
                                std::size_t stride, std::uint32_t background, std::uint32_t mask,
                                std::vector<std::uint8_t>& occupied)
 {
+  begin(background, mask);
   if (pixels == nullptr || width != width_ || height != height_ || stride < width)
   {
-    occupied.assign(footprints_.size(), 1);
-    return footprints_.size();
+    broken_ = true;
   }
-  const std::uint32_t reference = background & mask;
-  std::fill(blocks_.begin(), blocks_.end(), 0);
-  for (std::uint32_t y = 0; y < height; ++y)
+  else
   {
-    const std::uint32_t* row = pixels + std::size_t(y) * stride;
-    std::uint8_t* block_row = blocks_.data() + std::size_t(y / kBlock) * blocks_x_;
-    for (std::uint32_t bx = 0; bx < blocks_x_; ++bx)
+    addRows(pixels, 0, height, stride);
+  }
+  return finish(occupied);
+}
+
+void WarpCellScan::begin(std::uint32_t background, std::uint32_t mask)
+{
+  reference_ = background & mask;
+  mask_ = mask;
+  next_row_ = 0;
+  broken_ = false;
+  std::fill(blocks_.begin(), blocks_.end(), 0);
+}
+
+void WarpCellScan::addRows(const std::uint32_t* rows, std::uint32_t y0, std::uint32_t count, std::size_t stride)
+{
+  if (broken_ || rows == nullptr || y0 != next_row_ || count > height_ - y0 || stride < width_)
+  {
+    broken_ = true;
+    return;
+  }
+  const std::uint32_t full_blocks = width_ / kBlock;
+  const std::uint64_t mask2 = (std::uint64_t(mask_) << 32) | mask_;
+  const std::uint64_t reference2 = (std::uint64_t(reference_) << 32) | reference_;
+  for (std::uint32_t r = 0; r < count; ++r)
+  {
+    const std::uint32_t* row = rows + std::size_t(r) * stride;
+    std::uint8_t* block_row = blocks_.data() + std::size_t((y0 + r) / kBlock) * blocks_x_;
+    for (std::uint32_t bx = 0; bx < full_blocks; ++bx)
     {
       if (block_row[bx])
       {
-        continue;
+        continue;  // already drawn: nothing in it can change that
       }
-      const std::uint32_t x0 = bx * kBlock;
-      const std::uint32_t x1 = std::min(x0 + kBlock, width);
-      std::uint32_t differs = 0;
-      for (std::uint32_t x = x0; x < x1; ++x)
+      // Two pixels per 64-bit word, a fixed count of words: vector code without intrinsics.
+      const std::uint32_t* p = row + std::size_t(bx) * kBlock;
+      std::uint64_t differs = 0;
+      for (std::uint32_t x = 0; x < kBlock; x += 2)
       {
-        differs |= (row[x] & mask) ^ reference;
+        std::uint64_t two;
+        std::memcpy(&two, p + x, sizeof(two));
+        differs |= (two ^ reference2) & mask2;
       }
       block_row[bx] = differs != 0 ? 1 : 0;
     }
+    if (full_blocks < blocks_x_ && !block_row[full_blocks])  // the narrower last block
+    {
+      std::uint32_t differs = 0;
+      for (std::uint32_t x = full_blocks * kBlock; x < width_; ++x)
+      {
+        differs |= (row[x] & mask_) ^ reference_;
+      }
+      block_row[full_blocks] = differs != 0 ? 1 : 0;
+    }
+  }
+  next_row_ = y0 + count;
+}
+
+std::size_t WarpCellScan::finish(std::vector<std::uint8_t>& occupied)
+{
+  if (broken_ || next_row_ != height_)
+  {
+    occupied.assign(footprints_.size(), 1);
+    return footprints_.size();
   }
   occupied.assign(footprints_.size(), 0);
   std::size_t count = 0;

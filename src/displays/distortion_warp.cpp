@@ -21,8 +21,11 @@
 #include <OgreTextureUnitState.h>
 #include <OgreViewport.h>
 
+#include <ros/console.h>
+
 #include "rviz_projector/displays/image_space.h"
 #include "rviz_projector/displays/ogre_name.h"
+#include "rviz_projector/displays/texture_rows.h"
 #include "rviz_projector/displays/viewport_clear.h"
 
 namespace rviz_projector
@@ -57,7 +60,7 @@ void DistortionWarp::clear()
   mesh_->setVisible(true);
   mesh_written_ = false;
   scan_.reset();
-  pixels_.clear();
+  rows_.reset();
   occupied_.clear();
   cells_ = WarpCells::All;
   cells_note_.clear();
@@ -131,6 +134,11 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
   if (cells_ == WarpCells::Occupied)
   {
     scan_ = std::make_unique<WarpCellScan>(grid_);
+    rows_ = std::make_unique<TextureRows>(texture_);
+    if (!rows_->note().empty())
+    {
+      cells_note_ += (cells_note_.empty() ? "" : "; ") + rows_->note();
+    }
   }
   writeMesh(nullptr);
   return std::string();
@@ -185,19 +193,31 @@ void DistortionWarp::writeMesh(const std::vector<std::uint8_t>* occupied)
   mesh_written_ = true;
 }
 
+bool DistortionWarp::readsDirectly() const
+{
+  return rows_ && rows_->readback() == RowReadback::Direct;
+}
+
 void DistortionWarp::drawOccupiedCells()
 {
-  const std::uint32_t w = grid_.ideal_lens.width();
-  const std::uint32_t h = grid_.ideal_lens.height();
   const Ogre::PixelFormat format = texture_->getFormat();  // 32-bit (configure())
-  pixels_.resize(std::size_t(w) * h);
-  texture_->getBuffer()->blitToMemory(Ogre::PixelBox(w, h, 1, format, pixels_.data()));
   // The background and the colour bits in the texture's own layout (alpha is not shown).
   std::uint32_t background = 0;
   std::uint32_t colour_bits = 0;
   Ogre::PixelUtil::packColour(background_.r, background_.g, background_.b, 0.0f, format, &background);
   Ogre::PixelUtil::packColour(1.0f, 1.0f, 1.0f, 0.0f, format, &colour_bits);
-  const std::size_t count = scan_->scan(pixels_.data(), w, h, w, background, colour_bits, occupied_);
+  // Strip by strip: each is scanned while it is in the cache. A failed read leaves rows out, and
+  // a scan that misses rows draws every cell (never drops one).
+  scan_->begin(background, colour_bits);
+  if (!rows_->read([this](const std::uint32_t* rows, std::uint32_t y0, std::uint32_t count, std::size_t stride) {
+        scan_->addRows(rows, y0, count, stride);
+      }))
+  {
+    ROS_WARN_STREAM("rviz_projector: " << (rows_->note().empty() ? "the ideal render could not be read back" :
+                                                                     rows_->note())
+                                       << "; every cell of the warp is drawn this frame");
+  }
+  const std::size_t count = scan_->finish(occupied_);
   mesh_->setVisible(count > 0);
   if (count > 0)
   {

@@ -209,3 +209,102 @@ TEST(ChooseWarpCells, SoftwareRenderersSkipEmptyCellsGpusDrawThemAllAndTheSettin
   EXPECT_EQ(rviz_projector::chooseWarpCells("sparse", "llvmpipe", &error), WarpCells::Occupied);
   EXPECT_NE(error.find("'sparse'"), std::string::npos) << error;
 }
+
+// The picture in strips of rows (texture_rows.h reads the ideal render back that way): every strip
+// size finds the cells that read a lit texel (the texelsRead oracle) and the same cells as the
+// whole picture at once.
+TEST(WarpCellScan, StripsOfAnySizeFindTheCellsOfTheWholePicture)
+{
+  const WarpGrid g = wideGrid();
+  const std::vector<std::set<std::uint32_t>> oracle = texelsRead(g);
+  WarpCellScan scan(g);
+  const std::uint32_t w = g.ideal_lens.width(), h = g.ideal_lens.height();
+  const std::size_t stride = w + 3;  // padded rows, the padding lit: must not count
+  std::vector<std::uint32_t> picture(stride * h, 0xFF000000u);
+  for (std::uint32_t y = 0; y < h; ++y)
+  {
+    std::fill(picture.begin() + std::ptrdiff_t(y * stride + w), picture.begin() + std::ptrdiff_t((y + 1) * stride),
+              0xFFFFFFFFu);
+  }
+  std::mt19937 rng(11);
+  std::vector<std::uint32_t> lit;
+  for (int k = 0; k < 40; ++k)
+  {
+    const std::uint32_t x = rng() % w, y = rng() % h;
+    picture[std::size_t(y) * stride + x] = 0xFF0000FFu;  // one colour channel
+    lit.push_back(x + y * w);
+  }
+  // The last column and row: the narrower last block, the last strip.
+  picture[std::size_t(h - 1) * stride + (w - 1)] = 0xFF00FF00u;
+  lit.push_back((w - 1) + (h - 1) * w);
+  std::vector<std::uint8_t> whole;
+  const std::size_t whole_count = scan.scan(picture.data(), w, h, stride, 0xFF000000u, 0x00FFFFFFu, whole);
+  for (std::size_t c = 0; c < oracle.size(); ++c)
+  {
+    for (const std::uint32_t t : lit)
+    {
+      if (oracle[c].count(t))
+      {
+        EXPECT_TRUE(whole[c]) << "cell " << c << " reads lit texel " << t;
+      }
+    }
+  }
+  ASSERT_GT(whole_count, 0u);
+  ASSERT_LT(whole_count, whole.size());
+  for (const std::uint32_t rows : {1u, 7u, 16u, 17u, 64u, 100u, h - 1, h})
+  {
+    std::vector<std::uint8_t> strips;
+    scan.begin(0xFF000000u, 0x00FFFFFFu);
+    for (std::uint32_t y = 0; y < h; y += rows)
+    {
+      scan.addRows(picture.data() + std::size_t(y) * stride, y, std::min(rows, h - y), stride);
+    }
+    EXPECT_EQ(scan.finish(strips), whole_count) << rows << "-row strips";
+    EXPECT_EQ(strips, whole) << rows << "-row strips";
+  }
+}
+
+// Rows missing, repeated, out of order or narrower than the picture: never a cell dropped (every
+// cell drawn); the next picture is scanned afresh.
+TEST(WarpCellScan, StripsThatAreNotThePictureDrawEveryCell)
+{
+  const WarpGrid g = wideGrid();
+  WarpCellScan scan(g);
+  const std::uint32_t w = g.ideal_lens.width(), h = g.ideal_lens.height();
+  const std::size_t all = std::size_t(g.columns) * g.rows;
+  const std::vector<std::uint32_t> dark(std::size_t(w) * h, 0u);
+  std::vector<std::uint8_t> occupied;
+  auto rowsAt = [&](std::uint32_t y) { return dark.data() + std::size_t(y) * w; };
+
+  scan.begin(0u, 0x00FFFFFFu);  // the last rows never come
+  scan.addRows(rowsAt(0), 0, h - 1, w);
+  EXPECT_EQ(scan.finish(occupied), all) << "a row missing";
+
+  scan.begin(0u, 0x00FFFFFFu);  // a gap
+  scan.addRows(rowsAt(0), 0, 64, w);
+  scan.addRows(rowsAt(128), 128, h - 128, w);
+  EXPECT_EQ(scan.finish(occupied), all) << "rows 64-127 missing";
+
+  scan.begin(0u, 0x00FFFFFFu);  // a strip again
+  scan.addRows(rowsAt(0), 0, 64, w);
+  scan.addRows(rowsAt(0), 0, h, w);
+  EXPECT_EQ(scan.finish(occupied), all) << "rows given twice";
+
+  scan.begin(0u, 0x00FFFFFFu);  // past the end
+  scan.addRows(rowsAt(0), 0, h, w);
+  scan.addRows(rowsAt(0), h, 1, w);
+  EXPECT_EQ(scan.finish(occupied), all) << "a row beyond the picture";
+
+  scan.begin(0u, 0x00FFFFFFu);  // rows narrower than the picture
+  scan.addRows(rowsAt(0), 0, h, w - 1);
+  EXPECT_EQ(scan.finish(occupied), all) << "a stride shorter than the picture's width";
+
+  scan.begin(0u, 0x00FFFFFFu);
+  scan.addRows(nullptr, 0, h, w);
+  EXPECT_EQ(scan.finish(occupied), all) << "no rows";
+
+  scan.begin(0u, 0x00FFFFFFu);  // afresh: the dark picture draws nothing
+  scan.addRows(rowsAt(0), 0, h, w);
+  EXPECT_EQ(scan.finish(occupied), 0u);
+  EXPECT_EQ(occupied.size(), all);
+}

@@ -31,6 +31,8 @@ std::vector<CellFootprint> cellFootprints(const WarpGrid& grid);
 /// Finds the cells with anything but background. The picture is 32-bit pixels, `stride` pixels
 /// per row, `width` x `height` (the grid's ideal image). Pixels are compared with `background` on
 /// the bits of `mask` (e.g. the colour channels without alpha).
+/// The picture can come whole (scan()) or in strips of rows, top to bottom (begin(), addRows(),
+/// finish()): a strip read back from the renderer and scanned at once stays in the CPU's cache.
 class WarpCellScan
 {
 public:
@@ -45,11 +47,27 @@ public:
   std::size_t scan(const std::uint32_t* pixels, std::uint32_t width, std::uint32_t height, std::size_t stride,
                    std::uint32_t background, std::uint32_t mask, std::vector<std::uint8_t>& occupied);
 
+  /// Starts a picture given in strips.
+  void begin(std::uint32_t background, std::uint32_t mask);
+  /// Rows [y0, y0 + count) of the picture, `stride` pixels apart, each `width` pixels (the grid's
+  /// ideal width). Strips must follow each other from row 0 down; one out of order, or of another
+  /// width, makes finish() draw every cell.
+  void addRows(const std::uint32_t* rows, std::uint32_t y0, std::uint32_t count, std::size_t stride);
+  /// The cells, as scan(). Unless every row of the picture came, in order: every cell (never drops).
+  std::size_t finish(std::vector<std::uint8_t>& occupied);
+
+  /// Width and height of the picture the scan expects (the grid's ideal image).
+  std::uint32_t width() const { return width_; }
+  std::uint32_t height() const { return height_; }
+
 private:
   std::vector<CellFootprint> footprints_;
   std::uint32_t width_ = 0, height_ = 0;
   std::uint32_t blocks_x_ = 0, blocks_y_ = 0;
   std::vector<std::uint8_t> blocks_;  // per block: any pixel not background
+  std::uint32_t reference_ = 0, mask_ = 0;  // background & mask, mask
+  std::uint32_t next_row_ = 0;  // rows [0, next_row_) summarised
+  bool broken_ = false;  // a strip out of order: every cell
 };
 
 /// Which cells the warp draws. All: every cell, always (one pass over every window pixel). Occupied:

@@ -6,7 +6,8 @@
 // On a software renderer the mesh costs ~12 ns of CPU per window pixel whatever the pixel shows
 // (~11 ms per 1280x800 frame on llvmpipe): there the ideal render is read back and only the cells
 // with something on them are drawn, into a window cleared to the background (core warp_cells.h;
-// RVIZ_PROJECTOR_WARP_CELLS=all|occupied|auto overrides the choice).
+// RVIZ_PROJECTOR_WARP_CELLS=all|occupied|auto overrides the choice). The read-back goes strip by
+// strip into the scan (texture_rows.h).
 #pragma once
 
 #include <cstdint>
@@ -35,6 +36,8 @@ class Viewport;
 
 namespace rviz_projector
 {
+class TextureRows;
+
 class DistortionWarp
 {
 public:
@@ -62,6 +65,9 @@ public:
   /// Every cell or only those with something on them (chosen in configure(): only those on a
   /// software renderer, when the texture's pixels are 32-bit).
   WarpCells cells() const { return cells_; }
+  /// Occupied cells: the ideal render is read back straight from OpenGL strip by strip (true) or
+  /// through OGRE whole (false; texture_rows.h).
+  bool readsDirectly() const;
   /// The mesh draws every pixel of the window (the window need not be cleared before it).
   bool coversWindow() const { return active() && cells_ == WarpCells::All; }
   /// A note on the choice of cells for the status (e.g. an unknown RVIZ_PROJECTOR_WARP_CELLS).
@@ -94,7 +100,7 @@ private:
   WarpCells cells_ = WarpCells::All;
   std::string cells_note_;
   std::unique_ptr<WarpCellScan> scan_;
-  std::vector<std::uint32_t> pixels_;    // the ideal render read back (occupied cells only)
+  std::unique_ptr<TextureRows> rows_;   // reads the ideal render back (occupied cells only)
   std::vector<std::uint8_t> occupied_;  // per cell
   bool mesh_written_ = false;
   std::uint32_t raw_width_ = 1, raw_height_ = 1;  // the raw image the mesh spans
