@@ -20,6 +20,9 @@
 //                cells with something on them, read back from the ideal render)
 //   same-scene-warped-all, driving-warped-all  the same with every cell of the warp drawn
 //                (RVIZ_PROJECTOR_WARP_CELLS=all: what a GPU does)
+//   paired same-scene, paired driving  the warp's extra CPU per frame measured in pairs: blocks of
+//                N/6 frames without D and with it alternate six times and each pair's difference of
+//                medians is printed (rows a minute apart see a shared VM at different speeds)
 // and the process RSS before and after the N frames of each, and the wall time of the measured
 // call per frame (median, 95th percentile) and its CPU time (median; the whole process: llvmpipe
 // shades on threads of its own): the warp's cost is the warped row minus the same row without D,
@@ -441,6 +444,70 @@ int main(int argc, char** argv)
     run(("driving-warped" + suffix).c_str(), drive, render_now);
   }
   unsetenv("RVIZ_PROJECTOR_WARP_CELLS");
+
+  // The warp's extra CPU per frame, paired: short blocks of frames without D and with it (cells as
+  // the renderer chooses), alternating, so both halves of a pair see the same machine (on a shared
+  // VM the speed drifts by more than the warp costs between rows a minute apart). Per pair the
+  // difference of the two blocks' median process CPU; printed per pair and their median.
+  const int block = std::max(20, frames / 6);
+  for (const char* scenario : {"same-scene", "driving"})
+  {
+    const bool driving = std::string(scenario) == "driving";
+    projector->subProp("Frame")->setValue(driving ? "alloc_bench_driving" : "alloc_bench_fixed");
+    int frame_index = 0;
+    // Median process CPU per frame over one block, with or without D.
+    auto blockMedian = [&](bool lens) {
+      sensor_msgs::CameraInfo with = plain;
+      if (lens)
+      {
+        with.D = { -0.2, 0.05, 0, 0, 0 };
+      }
+      info_pub.publish(with);
+      const bool applied = waitFor(
+          [&] {
+            const rviz::StatusProperty* status = distortionStatus();
+            return lens ? status && status->getLevel() == rviz::StatusProperty::Ok : status == nullptr;
+          },
+          5.0);
+      std::vector<double> cpu;
+      for (int i = 0; i < 30 + block; ++i)  // 30 frames to settle after the change
+      {
+        spin(0.0);
+        if (driving)
+        {
+          drive(frame_index++);
+        }
+        else
+        {
+          rviz_projector::ProjectionChangeCounter::bump();
+        }
+        const double cpu0 = processCpuMs();
+        render_now();
+        if (i >= 30)
+        {
+          cpu.push_back(processCpuMs() - cpu0);
+        }
+      }
+      return applied ? percentile(cpu, 0.5) : -1.0;
+    };
+    std::vector<double> extra;
+    std::printf("# paired %s: warp's extra CPU ms per frame (median of %d frames with D - without), per pair:",
+                scenario, block);
+    for (int pair = 0; pair < 6; ++pair)
+    {
+      const double without = blockMedian(false);
+      const double with = blockMedian(true);
+      if (without < 0.0 || with < 0.0)
+      {
+        std::fprintf(stderr, "alloc_bench: the lens was not applied in time (paired %s)\n", scenario);
+        return 1;
+      }
+      extra.push_back(with - without);
+      std::printf(" %.2f", with - without);
+    }
+    std::printf("; median %.2f\n", percentile(extra, 0.5));
+    std::fflush(stdout);
+  }
 
   delete manager;
   delete panel;
