@@ -17,7 +17,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "rviz_projector/calibration/calibration_file_yaml.h"
-
+#include "rviz_projector/core/ascii_lower.h"
 #include "rviz_projector/core/pinhole_model.h"
 
 namespace rviz_projector
@@ -223,10 +223,7 @@ std::string checkYaml(const std::string& path, std::vector<std::string>& warning
 
 std::string lowerExtension(const std::string& path)
 {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
+  return asciiLower(std::filesystem::path(path).extension().string());
 }
 
 bool near(double a, double b)

@@ -1,10 +1,11 @@
 #include "rviz_projector/core/warp_cells.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+#include "rviz_projector/core/ascii_lower.h"
 
 namespace rviz_projector
 {
@@ -17,12 +18,6 @@ std::uint32_t clampIndex(double v, std::uint32_t size)
     return 0;
   }
   return v >= double(size) ? size : static_cast<std::uint32_t>(v);
-}
-
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
 }
 }  // namespace
 
@@ -177,7 +172,7 @@ std::size_t WarpCellScan::finish(std::vector<std::uint8_t>& occupied)
 
 WarpCells chooseWarpCells(const std::string& setting, const std::string& renderer, std::string* error)
 {
-  const std::string s = lower(setting);
+  const std::string s = asciiLower(setting);
   if (s == "all")
   {
     return WarpCells::All;
@@ -190,7 +185,7 @@ WarpCells chooseWarpCells(const std::string& setting, const std::string& rendere
   {
     *error = "RVIZ_PROJECTOR_WARP_CELLS='" + setting + "' is not one of all, occupied, auto: auto is used";
   }
-  const std::string r = lower(renderer);
+  const std::string r = asciiLower(renderer);
   const bool software = r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
                         r.find("swrast") != std::string::npos || r.find("software rasterizer") != std::string::npos;
   return software ? WarpCells::Occupied : WarpCells::All;

@@ -1,8 +1,5 @@
 #include "rviz_projector/displays/main_view_cost.h"
 
-#include <algorithm>
-#include <cctype>
-
 #include <OgreRenderSystem.h>
 #include <OgreRenderSystemCapabilities.h>
 #include <OgreRenderWindow.h>
@@ -11,12 +8,13 @@
 #include <rviz/render_panel.h>
 #include <rviz/view_manager.h>
 
+#include "rviz_projector/core/ascii_lower.h"
+
 namespace rviz_projector
 {
 bool isSoftwareRenderer(const std::string& gl_renderer)
 {
-  std::string name = gl_renderer;
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string name = asciiLower(gl_renderer);
   for (const char* software : {"llvmpipe", "softpipe", "software rasterizer", "swr", "gdi generic"})
   {
     if (name.find(software) != std::string::npos)

@@ -322,10 +322,10 @@ void ProjectorCameraDisplay::updateWarp()
   }
   else if (warp_->active())
   {
-    const QString cells =
-        warp_->cells() != WarpCells::Occupied ? QString() :
-        warp_->readsDirectly()                ? QString("; only its cells with something on them are drawn (read back directly)") :
-                                                QString("; only its cells with something on them are drawn (read back whole)");
+    const QString cells = warp_->cells() != WarpCells::Occupied ?
+                              QString() :
+                              QString("; only its cells with something on them are drawn (read back %1)")
+                                  .arg(warp_->readsDirectly() ? "directly" : "whole");
     const QString note = warp_->cellsNote().empty() ? QString() : QString(" (%1)").arg(warp_->cellsNote().c_str());
     setStatus(warp_->cellsNote().empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Distortion",
               QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)%5%6")

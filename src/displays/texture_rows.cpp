@@ -1,7 +1,6 @@
 #include "rviz_projector/displays/texture_rows.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 
 #include <GL/gl.h>
@@ -13,6 +12,8 @@
 #include <OgreRenderSystem.h>
 #include <OgreRenderSystemCapabilities.h>
 #include <OgreRoot.h>
+
+#include "rviz_projector/core/ascii_lower.h"
 
 namespace rviz_projector
 {
@@ -28,12 +29,6 @@ GetTextureSubImage getTextureSubImage()
   static const auto function = reinterpret_cast<GetTextureSubImage>(
       glXGetProcAddressARB(reinterpret_cast<const GLubyte*>("glGetTextureSubImage")));
   return function;
-}
-
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
 }
 
 // The pack state glGetTextureSubImage reads, set to tight rows into client memory and put back
@@ -76,8 +71,8 @@ private:
 RowReadback chooseRowReadback(const std::string& setting, const std::string& render_system, int gl_major,
                               int gl_minor, bool rgba8, std::string* note)
 {
-  const std::string s = lower(setting);
-  const bool possible = lower(render_system).find("opengl") != std::string::npos &&
+  const std::string s = asciiLower(setting);
+  const bool possible = asciiLower(render_system).find("opengl") != std::string::npos &&
                         (gl_major > 4 || (gl_major == 4 && gl_minor >= 5)) && rgba8;
   if (s == "whole")
   {

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "rviz_projector/core/ascii_lower.h"
 #include "rviz_projector/core/path_spacer.h"
 #include "rviz_projector/core/path_style_limits.h"
 #include "rviz_projector/core/rigid_transform.h"
@@ -123,8 +124,7 @@ std_msgs::ColorRGBA colorParam(const ros::NodeHandle& pnh, const std::string& na
 
 SpacingMode modeParam(const ros::NodeHandle& pnh)
 {
-  std::string mode = pnh.param<std::string>("spacing_mode", "exact");
-  std::transform(mode.begin(), mode.end(), mode.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string mode = asciiLower(pnh.param<std::string>("spacing_mode", "exact"));
   if (mode == "paper")
   {
     return SpacingMode::Paper;

@@ -56,10 +56,6 @@ public:
   /// The cells, as scan(). Unless every row of the picture came, in order: every cell (never drops).
   std::size_t finish(std::vector<std::uint8_t>& occupied);
 
-  /// Width and height of the picture the scan expects (the grid's ideal image).
-  std::uint32_t width() const { return width_; }
-  std::uint32_t height() const { return height_; }
-
 private:
   std::vector<CellFootprint> footprints_;
   std::uint32_t width_ = 0, height_ = 0;
