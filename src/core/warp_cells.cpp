@@ -142,11 +142,13 @@ void WarpCellScan::addRows(const std::uint32_t* rows, std::uint32_t y0, std::uin
 
 std::size_t WarpCellScan::finish(std::vector<std::uint8_t>& occupied)
 {
-  if (broken_ || next_row_ != height_)
+  if (!complete())
   {
+    lit_blocks_ = blocks_.size();
     occupied.assign(footprints_.size(), 1);
     return footprints_.size();
   }
+  lit_blocks_ = static_cast<std::size_t>(std::count(blocks_.begin(), blocks_.end(), std::uint8_t(1)));
   occupied.assign(footprints_.size(), 0);
   std::size_t count = 0;
   for (std::size_t c = 0; c < footprints_.size(); ++c)
@@ -168,6 +170,60 @@ std::size_t WarpCellScan::finish(std::vector<std::uint8_t>& occupied)
     count += any ? 1 : 0;
   }
   return count;
+}
+
+void WarpCellScan::litRects(std::vector<TexelRect>& rects) const
+{
+  rects.clear();
+  if (!complete())
+  {
+    rects.push_back({0, 0, width_, height_});
+    return;
+  }
+  // Runs of lit blocks along each block row; a run open since earlier rows grows down while the
+  // same run follows (a vertical bar or a disc's middle rows: one rectangle instead of many).
+  std::vector<TexelRect> open;  // runs of the previous block row, in block units
+  std::vector<TexelRect> next;
+  auto close = [&](const TexelRect& run) {
+    rects.push_back({run.x0 * kBlock, run.y0 * kBlock, std::min(run.x1 * kBlock, width_),
+                     std::min(run.y1 * kBlock, height_)});
+  };
+  for (std::uint32_t by = 0; by <= blocks_y_; ++by)
+  {
+    next.clear();
+    std::size_t o = 0;  // open runs are sorted by x0: walk them along the row
+    for (std::uint32_t bx = 0; by < blocks_y_ && bx < blocks_x_;)
+    {
+      if (!blocks_[std::size_t(by) * blocks_x_ + bx])
+      {
+        ++bx;
+        continue;
+      }
+      const std::uint32_t x0 = bx;
+      while (bx < blocks_x_ && blocks_[std::size_t(by) * blocks_x_ + bx])
+      {
+        ++bx;
+      }
+      while (o < open.size() && open[o].x0 < x0)
+      {
+        close(open[o++]);
+      }
+      if (o < open.size() && open[o].x0 == x0 && open[o].x1 == bx)
+      {
+        next.push_back({x0, open[o].y0, bx, by + 1});  // the same run: one rectangle grows
+        ++o;
+      }
+      else
+      {
+        next.push_back({x0, by, bx, by + 1});
+      }
+    }
+    for (; o < open.size(); ++o)
+    {
+      close(open[o]);
+    }
+    open.swap(next);
+  }
 }
 
 WarpCells chooseWarpCells(const std::string& setting, const std::string& renderer, std::string* error)

@@ -11,18 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
-#include <functional>
 #include <string>
 #include <vector>
 
-#include <OgreManualObject.h>
-#include <OgreRenderSystem.h>
-#include <OgreRenderTarget.h>
-#include <OgreRenderWindow.h>
-#include <OgreRoot.h>
-#include <OgreSceneManager.h>
-#include <OgreViewport.h>
 #include <QColor>
 #include <QGuiApplication>
 #include <QScreen>
@@ -35,6 +26,7 @@
 #include "projector_test_fixture.h"
 
 using rviz_projector_test::bodyMount;
+using rviz_projector_test::distortedInfo;
 using rviz_projector_test::greenCentroid;
 using rviz_projector_test::kDemoMount;
 using rviz_projector_test::PixelOracle;
@@ -274,13 +266,6 @@ INSTANTIATE_TEST_SUITE_P(AwkwardPairs, LetterboxPixelsTest,
 // f = 1900 projector, targets out to the image corners, where ignoring D misplaces them by 16-69 px.
 namespace
 {
-sensor_msgs::CameraInfo distortedInfo(const std::vector<double>& d)
-{
-  sensor_msgs::CameraInfo info = projectorInfo(1280, 800, 1900, 639.5, 399.5);
-  info.distortion_model = "plumb_bob";
-  info.D = d;
-  return info;
-}
 const std::vector<Vec2> kCornerTargets{{640, 400}, {60, 45}, {1220, 50}, {1225, 755}, {55, 760}, {330, 200}};
 }  // namespace
 
@@ -321,214 +306,4 @@ TEST_F(ProjectorCameraTest, PixelAccuracyThroughAWideAngleLensWithBinningAndRegi
   const double worst = pixelAccuracy(info, down, {{240, 150}, {30, 25}, {450, 30}, {455, 275}, {25, 280}});
   std::printf("wide lens, ROI 960x600+160+100, binning 2x2: max error %.3f px\n", worst);
   EXPECT_LE(worst, kBound);
-}
-
-// Issue 24: under the warp's mesh the window is not cleared first (the mesh covers every pixel of
-// the image and draws the ideal render, cleared to the background): nothing of an earlier frame
-// may stay, not even in the image's edge rows and columns. A floor disc far larger than the view
-// lights every pixel; moved out of view, every image pixel must be the black background again.
-// Then lit again, and the projector's pose lost (its frame unknown): the mesh is not drawn and the
-// window must be blanked all the same.
-TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
-{
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
-  const Vec2 centre = oracle.floorPoint({640, 400});
-  addTarget(centre, 200.0);
-  info_pub_.publish(info);
-  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
-  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
-  auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
-  auto isBlack = [](QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; };
-  auto count = [](const QImage& image, const std::function<bool(QRgb)>& pred) {
-    int n = 0;
-    for (int y = 0; y < image.height(); ++y)
-    {
-      for (int x = 0; x < image.width(); ++x)
-      {
-        n += pred(image.pixel(x, y)) ? 1 : 0;
-      }
-    }
-    return n;
-  };
-  // The image part of the window once every pixel is `pred` (or the last grab after the timeout).
-  auto imageWhenAll = [&](const std::function<bool(QRgb)>& pred) {
-    return imagePart(grabWhen([&](const QImage& f) {
-                       const QImage image = imagePart(f, oracle);
-                       return !image.isNull() && count(image, pred) == image.width() * image.height();
-                     }),
-                     oracle);
-  };
-  auto moveDisc = [&](double x) {
-    nav_msgs::Path path;
-    path.header.frame_id = "map";
-    geometry_msgs::PoseStamped pose;
-    pose.header = path.header;
-    pose.pose.position.x = x;
-    pose.pose.position.y = centre.y;
-    pose.pose.orientation.w = 1;
-    path.poses.push_back(pose);
-    target_pubs_.back().publish(path);
-  };
-
-  const QImage lit = imageWhenAll(isGreen);
-  ASSERT_FALSE(lit.isNull());
-  ASSERT_EQ(count(lit, isGreen), lit.width() * lit.height()) << "the disc lights every image pixel";
-
-  moveDisc(centre.x + 1000.0);
-  const QImage dark = imageWhenAll(isBlack);
-  ASSERT_FALSE(dark.isNull());
-  EXPECT_EQ(count(dark, isBlack), dark.width() * dark.height())
-      << "pixels left from the earlier frame: " << dark.width() * dark.height() - count(dark, isBlack)
-      << " (first row " << count(dark.copy(0, 0, dark.width(), 1), isBlack) << " of " << dark.width() << " black)";
-
-  moveDisc(centre.x);
-  const QImage lit_again = imageWhenAll(isGreen);
-  ASSERT_EQ(count(lit_again, isGreen), lit_again.width() * lit_again.height()) << "lit again";
-  projector_->subProp("Frame")->setValue("rviz_projector_test_unknown_frame");
-  const QImage no_pose = imageWhenAll(isBlack);
-  ASSERT_FALSE(no_pose.isNull());
-  EXPECT_EQ(count(no_pose, isBlack), no_pose.width() * no_pose.height())
-      << "without a pose the window is blanked: " << no_pose.width() * no_pose.height() - count(no_pose, isBlack)
-      << " pixels left from the earlier frame";
-}
-
-// Issue 24, the warp's cost on a software renderer: only the cells with something on them are
-// drawn (into a window cleared to the background). The picture must be the one the whole mesh
-// draws, pixel for pixel: twenty targets spread over the image, through the wide-angle lens, drawn
-// once with every cell (RVIZ_PROJECTOR_WARP_CELLS=all: the path whose accuracy the tests above
-// measure against cv::projectPoints) and once with the occupied cells only.
-TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIsTheWholeMeshs)
-{
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
-  for (int j = 0; j < 4; ++j)
-  {
-    for (int i = 0; i < 5; ++i)
-    {
-      const Vec2 floor = oracle.floorPoint({77.0 + 283.0 * i, 56.0 + 229.0 * j});
-      addTarget(floor, 30.0 * oracle.depth(floor) / oracle.fx());
-    }
-  }
-  // Without D: the window's viewport as the output made it clears depth and stencil together (a
-  // depth clear alone is a per-pixel masked write on the software renderer, doc/dev/performance.md).
-  const unsigned all_three = Ogre::FBT_COLOUR | Ogre::FBT_DEPTH | Ogre::FBT_STENCIL;
-  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
-  EXPECT_TRUE(projector_->outputWindow()->renderWindow()->getViewport(0)->getClearEveryFrame());
-  EXPECT_EQ(projector_->outputWindow()->renderWindow()->getViewport(0)->getClearBuffers(), all_three);
-  auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
-  auto greenCount = [&](const QImage& image) {
-    int n = 0;
-    for (int y = 0; y < image.height(); ++y)
-    {
-      for (int x = 0; x < image.width(); ++x)
-      {
-        n += isGreen(image.pixel(x, y)) ? 1 : 0;
-      }
-    }
-    return n;
-  };
-  // Shown through the lens with `cells` ("all" or "occupied") and the read-back `readback` ("direct"
-  // or "whole", texture_rows.h); the image part once every target is.
-  auto showWith = [&](const char* cells, const char* readback) {
-    setenv("RVIZ_PROJECTOR_WARP_CELLS", cells, 1);
-    setenv("RVIZ_PROJECTOR_WARP_READBACK", readback, 1);
-    info_pub_.publish(projectorInfo(1280, 800, 1900, 639.5, 399.5));  // no D: the warp is released
-    EXPECT_TRUE(waitFor([&] { return projector_->hasLens() && !statusOf(projector_, "Distortion").present; }));
-    info_pub_.publish(info);  // the lens again: the warp made anew with `cells`
-    const bool occupied = std::string(cells) == "occupied";
-    // On this machine's llvmpipe (OpenGL 4.5) "direct" must really read directly.
-    const QString read = std::string(readback) == "direct" ? "(read back directly)" : "(read back whole)";
-    EXPECT_TRUE(waitFor([&] {
-      const auto s = statusOf(projector_, "Distortion");
-      return s.present && s.text.contains("warp") && s.text.contains("only its cells") == occupied &&
-             (!occupied || s.text.contains(read));
-    })) << statusOf(projector_, "Distortion").text.toStdString();
-    EXPECT_TRUE(waitFor([&] { return targetsReady() && projector_->outputWindow() &&
-                                     projector_->outputWindow()->isVisible(); }));
-    return imagePart(grabWhen([&](const QImage& f) { return greenCount(imagePart(f, oracle)) > 20 * 400; }), oracle);
-  };
-  auto windowView = [&] { return projector_->outputWindow()->renderWindow()->getViewport(0); };
-  const QImage whole = showWith("all", "direct");
-  EXPECT_FALSE(windowView()->getClearEveryFrame()) << "the whole mesh covers the window: nothing to clear";
-  // Cells the warp's mesh draws now, from OGRE's own objects (its triangles / 2; -1: no mesh).
-  auto cellsDrawn = [&]() -> long {
-    for (const auto& manager : Ogre::Root::getSingleton().getSceneManagers())
-    {
-      for (const auto& object : manager.second->getMovableObjects("ManualObject"))
-      {
-        if (object.first.rfind("rviz_projector_warp_mesh_", 0) != 0)
-        {
-          continue;
-        }
-        const auto* mesh = static_cast<const Ogre::ManualObject*>(object.second);
-        long indices = 0;
-        for (Ogre::ManualObject::ManualObjectSection* section : mesh->getSections())
-        {
-          indices += long(section->getRenderOperation()->indexData->indexCount);
-        }
-        return mesh->isVisible() ? indices / 6 : 0;
-      }
-    }
-    return -1;
-  };
-  EXPECT_EQ(cellsDrawn(), 32 * 20) << "every cell of the 32x20 warp";
-  const QImage read_whole = showWith("occupied", "whole");
-  // 20 small targets: each on at most 3 x 3 cells (core WarpCellScan); none drawn means none read.
-  EXPECT_GE(cellsDrawn(), 20);
-  EXPECT_LE(cellsDrawn(), 20 * 9) << "read back whole: more cells than the targets are on";
-  const QImage occupied = showWith("occupied", "direct");
-  EXPECT_GE(cellsDrawn(), 20);
-  EXPECT_LE(cellsDrawn(), 20 * 9) << "read back directly: more cells than the targets are on";
-  unsetenv("RVIZ_PROJECTOR_WARP_CELLS");
-  unsetenv("RVIZ_PROJECTOR_WARP_READBACK");
-  ASSERT_FALSE(whole.isNull());
-  ASSERT_GT(greenCount(whole), 20 * 400) << "the targets are shown";
-  for (const QImage* cells : {&read_whole, &occupied})
-  {
-    ASSERT_EQ(whole.size(), cells->size());
-    int differ = 0;
-    for (int y = 0; y < whole.height(); ++y)
-    {
-      for (int x = 0; x < whole.width(); ++x)
-      {
-        differ += whole.pixel(x, y) != cells->pixel(x, y) ? 1 : 0;
-      }
-    }
-    EXPECT_EQ(differ, 0) << "pixels that differ between the whole mesh and its occupied cells read back "
-                         << (cells == &occupied ? "directly" : "whole");
-  }
-  saveShot(occupied, "warp_occupied_cells");
-  // Through the lens, both passes too: the window's viewport, cleared again now that only cells are
-  // drawn (its colour alone: the warp's mesh tests no depth), and the ideal view's texture (all
-  // three). From OGRE's own objects.
-  Ogre::Viewport* window_view = windowView();
-  EXPECT_TRUE(window_view->getClearEveryFrame());
-  EXPECT_EQ(window_view->getClearBuffers(), static_cast<unsigned>(Ogre::FBT_COLOUR));
-  int textures = 0;
-  auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
-  while (targets.hasMoreElements())
-  {
-    Ogre::RenderTarget* target = targets.getNext();
-    if (target->getName().find("rviz_projector_warp_texture_") == std::string::npos || target->getNumViewports() == 0)
-    {
-      continue;
-    }
-    ++textures;
-    EXPECT_TRUE(target->getViewport(0)->getClearEveryFrame()) << target->getName();
-    EXPECT_EQ(target->getViewport(0)->getClearBuffers(), all_three) << target->getName();
-  }
-  EXPECT_EQ(textures, 1) << "the warp's texture among OGRE's render targets";
-  // The lens without D again: the scene is drawn into the window itself, which clears its depth and
-  // stencil again (the targets' depth order needs them).
-  info_pub_.publish(projectorInfo(1280, 800, 1900, 639.5, 399.5));
-  EXPECT_TRUE(waitFor([&] { return projector_->hasLens() && !statusOf(projector_, "Distortion").present; }));
-  EXPECT_TRUE(waitFor([&] {
-    window_view = windowView();
-    return window_view->getClearEveryFrame() && window_view->getClearBuffers() == all_three;
-  })) << "clears " << window_view->getClearBuffers();
 }

@@ -35,6 +35,14 @@ sensor_msgs::CameraInfo projectorInfo(unsigned w, unsigned h, double f, double c
   return cameraInfo(kOpticalFrame, w, h, f, cx, cy);
 }
 
+sensor_msgs::CameraInfo distortedInfo(const std::vector<double>& d)
+{
+  sensor_msgs::CameraInfo info = projectorInfo(1280, 800, 1900, 639.5, 399.5);
+  info.distortion_model = "plumb_bob";
+  info.D = d;
+  return info;
+}
+
 Letterbox letterbox(int ww, int wh, int iw, int ih)
 {
   Letterbox box;

@@ -53,6 +53,8 @@ extern const Mount kDemoMount;
 
 /// An ideal lens in the optical frame kOpticalFrame (K = P, no distortion).
 sensor_msgs::CameraInfo projectorInfo(unsigned w, unsigned h, double f, double cx, double cy);
+/// The issue 24 projector: 1280x800, f = 1900, centred, with plumb_bob distortion `d`.
+sensor_msgs::CameraInfo distortedInfo(const std::vector<double>& d);
 
 /// Integer window rectangle the image is drawn into.
 struct Letterbox

@@ -15,15 +15,17 @@
 
 namespace rviz_projector
 {
-/// The texels a cell of the grid can read: [x0, x1) x [y0, y1) in ideal pixels, clamped to the
-/// ideal image. Inside a cell the GPU interpolates the texture coordinates of its two triangles, so
-/// every sample lies in the bounding box of the cell's four vertices; a bilinear sample reads the
-/// texel at or before it and the next one; one texel more on each side absorbs the GPU's limited
-/// sub-texel precision.
-struct CellFootprint
+/// Texels [x0, x1) x [y0, y1) of a picture (the ideal render).
+struct TexelRect
 {
   std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
+
+/// The texels a cell of the grid can read, in ideal pixels, clamped to the ideal image. Inside a
+/// cell the GPU interpolates the texture coordinates of its two triangles, so every sample lies in
+/// the bounding box of the cell's four vertices; a bilinear sample reads the texel at or before it
+/// and the next one; one texel more on each side absorbs the GPU's limited sub-texel precision.
+using CellFootprint = TexelRect;
 
 /// One footprint per cell, row by row (cell (i, j) at j * columns + i).
 std::vector<CellFootprint> cellFootprints(const WarpGrid& grid);
@@ -37,8 +39,10 @@ class WarpCellScan
 {
 public:
   /// Edge of the square blocks the picture is summarised in (one pass over the picture; then each
-  /// cell looks only at its blocks). A block counts as drawn if any pixel of it is.
-  static constexpr std::uint32_t kBlock = 16;
+  /// cell looks only at its blocks). A block counts as drawn if any pixel of it is. The lit blocks
+  /// are also what the warp's eraser paints back to the background (litRects()): small blocks paint
+  /// little more than what is lit.
+  static constexpr std::uint32_t kBlock = 8;
 
   explicit WarpCellScan(const WarpGrid& grid);
 
@@ -56,6 +60,18 @@ public:
   /// The cells, as scan(). Unless every row of the picture came, in order: every cell (never drops).
   std::size_t finish(std::vector<std::uint8_t>& occupied);
 
+  /// After finish() or scan(): every row of the picture came, in order (only then is litRects()
+  /// the picture's).
+  bool complete() const { return !broken_ && next_row_ == height_ && height_ > 0; }
+  /// After a complete picture: the pixels of the blocks with anything but background on the mask's
+  /// bits, as rectangles [x0, x1) x [y0, y1) clamped to the picture (each block row's runs of such
+  /// blocks, a run merged with the same run in the rows below). Every pixel outside them is
+  /// background. An incomplete picture: one rectangle, the whole picture.
+  void litRects(std::vector<TexelRect>& rects) const;
+  /// Of the last picture: blocks with anything but background, and all its blocks.
+  std::size_t litBlocks() const { return lit_blocks_; }
+  std::size_t blocks() const { return blocks_.size(); }
+
 private:
   std::vector<CellFootprint> footprints_;
   std::uint32_t width_ = 0, height_ = 0;
@@ -64,6 +80,7 @@ private:
   std::uint32_t reference_ = 0, mask_ = 0;  // background & mask, mask
   std::uint32_t next_row_ = 0;  // rows [0, next_row_) summarised
   bool broken_ = false;  // a strip out of order: every cell
+  std::size_t lit_blocks_ = 0;  // counted by finish()
 };
 
 /// Which cells the warp draws. All: every cell, always (one pass over every window pixel). Occupied:

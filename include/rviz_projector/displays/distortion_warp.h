@@ -7,9 +7,11 @@
 // (~11 ms per 1280x800 frame on llvmpipe): there the ideal render is read back and only the cells
 // with something on them are drawn, into a window cleared to the background (core warp_cells.h;
 // RVIZ_PROJECTOR_WARP_CELLS=all|occupied|auto overrides the choice). The read-back goes strip by
-// strip into the scan (texture_rows.h).
+// strip into the scan (texture_rows.h); what it finds lit is all the next frame puts back to the
+// background in the texture, instead of clearing all of it (warp_eraser.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -37,6 +39,7 @@ class Viewport;
 namespace rviz_projector
 {
 class TextureRows;
+class WarpEraser;
 
 class DistortionWarp
 {
@@ -83,6 +86,8 @@ private:
   void writeMesh(const std::vector<std::uint8_t>* occupied);
   /// Occupied cells only: reads the ideal render back and draws the cells with something on them.
   void drawOccupiedCells();
+  /// Occupied cells only, before the ideal render: erase what the last frame lit, or clear it all.
+  void prepareTexture();
 
   Ogre::Camera* scene_camera_;
   Ogre::RenderTargetListener* listener_;
@@ -102,6 +107,12 @@ private:
   std::unique_ptr<WarpCellScan> scan_;
   std::unique_ptr<TextureRows> rows_;   // reads the ideal render back (occupied cells only)
   std::vector<std::uint8_t> occupied_;  // per cell
+  // Occupied cells: the texture's colour is put back where the last frame lit it (warp_eraser.h)
+  // instead of cleared whole, when that frame's picture was read back whole and lit little of it.
+  std::unique_ptr<WarpEraser> eraser_;
+  std::vector<TexelRect> lit_rects_;  // the last frame's lit blocks (valid if erase_ready_)
+  bool erase_ready_ = false;
+  std::array<std::uint8_t, 4> background_bytes_{{0, 0, 0, 255}};  // the texture's bytes after a clear
   bool mesh_written_ = false;
   std::uint32_t raw_width_ = 1, raw_height_ = 1;  // the raw image the mesh spans
 };

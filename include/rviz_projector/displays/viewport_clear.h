@@ -20,6 +20,10 @@ constexpr unsigned kProjectorClearBuffers = Ogre::FBT_COLOUR | Ogre::FBT_DEPTH |
 /// cells it does not draw. Its depth buffer is not used while it shows the warp.
 constexpr unsigned kWarpCellsClearBuffers = Ogre::FBT_COLOUR;
 
+/// What the ideal render's texture clears when the warp's eraser (warp_eraser.h) has put its colour
+/// back to the background where the last frame lit it: depth and stencil (together: a plain fill).
+constexpr unsigned kErasedTextureClearBuffers = Ogre::FBT_DEPTH | Ogre::FBT_STENCIL;
+
 /// The buffers `viewport` clears each frame (0: it is not cleared).
 inline unsigned clearedBuffers(const Ogre::Viewport& viewport)
 {
