@@ -69,6 +69,7 @@ void DistortionWarp::clear()
   scan_.reset();
   rows_.reset();
   occupied_.clear();
+  drawn_.clear();
   cells_ = WarpCells::All;
   cells_note_.clear();
   if (eraser_)
@@ -247,9 +248,10 @@ void DistortionWarp::drawOccupiedCells()
     scan_->litRects(lit_rects_);
   }
   mesh_->setVisible(count > 0);
-  if (count > 0)
+  if (count > 0 && occupied_ != drawn_)  // the same cells as the last frame: the mesh holds them
   {
     writeMesh(&occupied_);
+    drawn_ = occupied_;
   }
 }
 

@@ -65,6 +65,7 @@ void WarpEraser::attach(Ogre::RenderTexture* target, std::uint32_t width, std::u
   height_ = std::max<std::uint32_t>(height, 1);
   mesh_->setVisible(false);
   painted_ = 0;
+  written_rects_.clear();  // another size: the next paint() writes its quads anew
   if (target_)
   {
     viewport_ = target_->addViewport(camera_, -1);  // before the scene's (z-order 0)
@@ -79,10 +80,12 @@ void WarpEraser::paint(const std::vector<TexelRect>& rects, const std::array<std
 {
   painted_ = rects.size();
   mesh_->setVisible(!rects.empty() && viewport_ != nullptr);
-  if (rects.empty() || viewport_ == nullptr)
+  if (rects.empty() || viewport_ == nullptr || (rects == written_rects_ && rgba == written_rgba_))
   {
-    return;
+    return;  // nothing to paint, or the mesh holds these quads already (the same picture again)
   }
+  written_rects_ = rects;
+  written_rgba_ = rgba;
   if (written_)
   {
     mesh_->beginUpdate(0);

@@ -21,6 +21,11 @@ struct TexelRect
   std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
+inline bool operator==(const TexelRect& a, const TexelRect& b)
+{
+  return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
+}
+
 /// The texels a cell of the grid can read, in ideal pixels, clamped to the ideal image. Inside a
 /// cell the GPU interpolates the texture coordinates of its two triangles, so every sample lies in
 /// the bounding box of the cell's four vertices; a bilinear sample reads the texel at or before it

@@ -107,6 +107,7 @@ private:
   std::unique_ptr<WarpCellScan> scan_;
   std::unique_ptr<TextureRows> rows_;   // reads the ideal render back (occupied cells only)
   std::vector<std::uint8_t> occupied_;  // per cell
+  std::vector<std::uint8_t> drawn_;     // the cells the mesh holds (empty: every cell, or none yet)
   // Occupied cells: the texture's colour is put back where the last frame lit it (warp_eraser.h)
   // instead of cleared whole, when that frame's picture was read back whole and lit little of it.
   std::unique_ptr<WarpEraser> eraser_;

@@ -54,6 +54,9 @@ private:
   std::uint32_t width_ = 1, height_ = 1;
   bool written_ = false;
   std::size_t painted_ = 0;
+  // What the mesh holds (a frame like the last one is not written again).
+  std::vector<TexelRect> written_rects_;
+  std::array<std::uint8_t, 4> written_rgba_{{0, 0, 0, 0}};
 };
 
 /// The bytes a render target of 8 bits per channel holds after a clear to `colour` (r, g, b, a
