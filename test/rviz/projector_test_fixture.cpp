@@ -250,7 +250,13 @@ void ProjectorCameraTest::addTarget(const Vec2& p, double diameter)
   d->subProp("Topic")->setValue(QString::fromStdString(topic));
   d->subProp("Destination circle diameter")->setValue(diameter);
   d->subProp("Height above floor")->setValue(0.0);
-  ros::Publisher pub = nh_.advertise<nav_msgs::Path>(topic, 1, true);
+  target_pubs_.push_back(nh_.advertise<nav_msgs::Path>(topic, 1, true));
+  targets_.push_back(dynamic_cast<rviz_projector::ProjectedPathDisplay*>(d));
+  moveTarget(targets_.size() - 1, p);
+}
+
+void ProjectorCameraTest::moveTarget(std::size_t index, const Vec2& p)
+{
   nav_msgs::Path path;
   path.header.frame_id = "map";
   geometry_msgs::PoseStamped pose;
@@ -259,9 +265,7 @@ void ProjectorCameraTest::addTarget(const Vec2& p, double diameter)
   pose.pose.position.y = p.y;
   pose.pose.orientation.w = 1;
   path.poses.push_back(pose);
-  pub.publish(path);
-  target_pubs_.push_back(pub);
-  targets_.push_back(dynamic_cast<rviz_projector::ProjectedPathDisplay*>(d));
+  target_pubs_.at(index).publish(path);
 }
 
 bool ProjectorCameraTest::targetsReady() const

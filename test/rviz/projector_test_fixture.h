@@ -126,6 +126,8 @@ protected:
   void mount(const Mount& m);
   /// A ProjectedPath with a single pose: just its destination disc, a target on the floor.
   void addTarget(const Vec2& p, double diameter);
+  /// Moves target `index` (in the order added) to floor point `p`.
+  void moveTarget(std::size_t index, const Vec2& p);
   bool targetsReady() const;
   /// Renders a frame and reads the output window's pixels back from the X server: exactly what the
   /// projector shows. (OGRE's own read-back of the back buffer is off by a fraction of a pixel on

@@ -20,8 +20,6 @@
 #include <OgreSceneManager.h>
 #include <OgreViewport.h>
 #include <QColor>
-#include <geometry_msgs/PoseStamped.h>
-#include <nav_msgs/Path.h>
 #include <rviz/display.h>
 
 #include "rviz_projector/displays/projection_change_counter.h"
@@ -98,17 +96,7 @@ TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
                      }),
                      oracle);
   };
-  auto moveDisc = [&](double x) {
-    nav_msgs::Path path;
-    path.header.frame_id = "map";
-    geometry_msgs::PoseStamped pose;
-    pose.header = path.header;
-    pose.pose.position.x = x;
-    pose.pose.position.y = centre.y;
-    pose.pose.orientation.w = 1;
-    path.poses.push_back(pose);
-    target_pubs_.back().publish(path);
-  };
+  auto moveDisc = [&](double x) { moveTarget(0, {x, centre.y}); };
 
   const QImage lit = imageWhenAll(isGreen);
   ASSERT_FALSE(lit.isNull());
@@ -294,17 +282,6 @@ TEST_F(ProjectorCameraTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindO
   ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").text.contains("only its cells"); }))
       << "this test is about the occupied cells (software renderer): "
       << statusOf(projector_, "Distortion").text.toStdString();
-  auto moveDisc = [&](const Vec2& floor) {
-    nav_msgs::Path path;
-    path.header.frame_id = "map";
-    geometry_msgs::PoseStamped pose;
-    pose.header = path.header;
-    pose.pose.position.x = floor.x;
-    pose.pose.position.y = floor.y;
-    pose.pose.orientation.w = 1;
-    path.poses.push_back(pose);
-    target_pubs_.back().publish(path);
-  };
   struct Count
   {
     int stray = 0;  // not the background, away from the disc
@@ -337,7 +314,7 @@ TEST_F(ProjectorCameraTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindO
     for (std::size_t k = 0; k < spots.size(); ++k)
     {
       const Vec2 floor = oracle.floorPoint(spots[k]);
-      moveDisc(floor);
+      moveTarget(0, floor);
       const Vec2 centre = oracle.imagePixel(floor);
       const QImage image = imagePart(grabWhen([&](const QImage& f) {
                                        const Count c = countPixels(imagePart(f, oracle), centre, background);
