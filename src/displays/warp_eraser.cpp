@@ -1,7 +1,6 @@
 #include "rviz_projector/displays/warp_eraser.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <OgreCamera.h>
 #include <OgreManualObject.h>
@@ -15,6 +14,7 @@
 #include <OgreTechnique.h>
 #include <OgreViewport.h>
 
+#include "rviz_projector/core/unorm8.h"
 #include "rviz_projector/displays/image_space.h"
 #include "rviz_projector/displays/ogre_name.h"
 
@@ -22,11 +22,7 @@ namespace rviz_projector
 {
 std::array<std::uint8_t, 4> clearedBytes(float r, float g, float b, float a)
 {
-  auto unorm = [](float c) {
-    const float clamped = std::isnan(c) ? 0.0f : std::min(std::max(c, 0.0f), 1.0f);
-    return static_cast<std::uint8_t>(std::lround(clamped * 255.0f));
-  };
-  return {unorm(r), unorm(g), unorm(b), unorm(a)};
+  return {unorm8(r), unorm8(g), unorm8(b), unorm8(a)};
 }
 
 WarpEraser::WarpEraser()
@@ -64,7 +60,6 @@ void WarpEraser::attach(Ogre::RenderTexture* target, std::uint32_t width, std::u
   width_ = std::max<std::uint32_t>(width, 1);
   height_ = std::max<std::uint32_t>(height, 1);
   mesh_->setVisible(false);
-  painted_ = 0;
   written_rects_.clear();  // another size: the next paint() writes its quads anew
   if (target_)
   {
@@ -78,7 +73,6 @@ void WarpEraser::attach(Ogre::RenderTexture* target, std::uint32_t width, std::u
 
 void WarpEraser::paint(const std::vector<TexelRect>& rects, const std::array<std::uint8_t, 4>& rgba)
 {
-  painted_ = rects.size();
   mesh_->setVisible(!rects.empty() && viewport_ != nullptr);
   if (rects.empty() || viewport_ == nullptr || (rects == written_rects_ && rgba == written_rgba_))
   {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <string>
 #include <unordered_map>
@@ -15,6 +16,7 @@
 
 #include "rviz_projector/core/lens_distortion.h"
 #include "rviz_projector/core/pinhole_model.h"
+#include "rviz_projector/core/unorm8.h"
 #include "rviz_projector/core/warp_cells.h"
 #include "rviz_projector/core/warp_grid.h"
 
@@ -423,4 +425,22 @@ TEST(WarpCellScan, LitRectsCoverEveryLitPixelAndOnlyTheirBlocks)
   EXPECT_EQ(rects[0].x1 - rects[0].x0, w);
   EXPECT_EQ(rects[0].y1 - rects[0].y0, h);
   EXPECT_EQ(scan.litBlocks(), scan.blocks());
+}
+
+// The byte OpenGL stores for a colour component (the warp's background reference and its eraser's
+// colour): round(255 c) of c clamped to 0..1; by hand.
+TEST(Unorm8, IsOpenGLsRoundingOfTheClampedComponent)
+{
+  EXPECT_EQ(rviz_projector::unorm8(0.0f), 0);
+  EXPECT_EQ(rviz_projector::unorm8(1.0f), 255);
+  EXPECT_EQ(rviz_projector::unorm8(20.0f / 255.0f), 20);
+  EXPECT_EQ(rviz_projector::unorm8(0.5f), 128);    // 127.5 rounds up (OGRE's packColour gave 128 too)
+  EXPECT_EQ(rviz_projector::unorm8(0.299f), 76);   // 76.245 (OGRE's truncation of 256 c: 76)
+  EXPECT_EQ(rviz_projector::unorm8(0.302f), 77);   // 77.01 (OGRE's truncation of 256 c: 77)
+  EXPECT_EQ(rviz_projector::unorm8(0.6f), 153);    // 153.0 (OGRE's truncation of 256 c: 153)
+  EXPECT_EQ(rviz_projector::unorm8(0.75f), 191);   // 191.25 (OGRE's truncation of 256 c: 192)
+  EXPECT_EQ(rviz_projector::unorm8(-0.2f), 0);
+  EXPECT_EQ(rviz_projector::unorm8(7.0f), 255);
+  EXPECT_EQ(rviz_projector::unorm8(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(rviz_projector::unorm8(std::numeric_limits<float>::infinity()), 255);
 }

@@ -41,8 +41,6 @@ public:
   /// This frame paints `rects` (pixels of the target, rows from the top) in `rgba`, bytes as the
   /// target stores them after a clear to that colour; no rectangles: paints nothing.
   void paint(const std::vector<TexelRect>& rects, const std::array<std::uint8_t, 4>& rgba);
-  /// Rectangles painted by the last paint() (0: none).
-  std::size_t painted() const { return painted_; }
 
 private:
   Ogre::SceneManager* scene_;
@@ -53,13 +51,12 @@ private:
   Ogre::Viewport* viewport_ = nullptr;
   std::uint32_t width_ = 1, height_ = 1;
   bool written_ = false;
-  std::size_t painted_ = 0;
   // What the mesh holds (a frame like the last one is not written again).
   std::vector<TexelRect> written_rects_;
   std::array<std::uint8_t, 4> written_rgba_{{0, 0, 0, 0}};
 };
 
-/// The bytes a render target of 8 bits per channel holds after a clear to `colour` (r, g, b, a
-/// in 0..1): OpenGL's conversion of a normalised float, round(255 c) of the clamped value.
+/// The bytes a render target of 8 bits per channel holds after a clear to (r, g, b, a): core unorm8
+/// of each.
 std::array<std::uint8_t, 4> clearedBytes(float r, float g, float b, float a);
 }  // namespace rviz_projector
