@@ -154,10 +154,6 @@ std::string DistortionWarp::configure(const PinholeModel& raw_lens, const LensDi
       eraser_ = std::make_unique<WarpEraser>();
     }
     eraser_->attach(render_texture_, ideal.width(), ideal.height());
-    if (!rows_->note().empty())
-    {
-      cells_note_ += (cells_note_.empty() ? "" : "; ") + rows_->note();
-    }
   }
   writeMesh(nullptr);
   return std::string();
@@ -212,6 +208,12 @@ void DistortionWarp::writeMesh(const std::vector<std::uint8_t>* occupied)
   mesh_written_ = true;
 }
 
+std::string DistortionWarp::cellsNote() const
+{
+  const std::string rows = rows_ ? rows_->note() : std::string();
+  return cells_note_.empty() ? rows : rows.empty() ? cells_note_ : cells_note_ + "; " + rows;
+}
+
 bool DistortionWarp::readsDirectly() const
 {
   return rows_ && rows_->readback() == RowReadback::Direct;
@@ -235,9 +237,10 @@ void DistortionWarp::drawOccupiedCells()
         scan_->addRows(rows, y0, count, stride);
       }))
   {
-    ROS_WARN_STREAM("rviz_projector: " << (rows_->note().empty() ? "the ideal render could not be read back" :
-                                                                     rows_->note())
-                                       << "; every cell of the warp is drawn this frame");
+    ROS_WARN_STREAM_THROTTLE(5.0, "rviz_projector: " << (rows_->note().empty() ?
+                                                             "the ideal render could not be read back" :
+                                                             rows_->note())
+                                                      << "; every cell of the warp is drawn this frame");
   }
   const std::size_t count = scan_->finish(occupied_);
   // What the texture holds now: next frame erases just that (a picture not read back whole: the

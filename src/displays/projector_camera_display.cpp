@@ -322,19 +322,26 @@ void ProjectorCameraDisplay::updateWarp()
   }
   else if (warp_->active())
   {
-    const QString cells = warp_->cells() != WarpCells::Occupied ?
-                              QString() :
-                              QString("; only its cells with something on them are drawn (read back %1)")
-                                  .arg(warp_->readsDirectly() ? "directly" : "whole");
-    const QString note = warp_->cellsNote().empty() ? QString() : QString(" (%1)").arg(warp_->cellsNote().c_str());
-    setStatus(warp_->cellsNote().empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Distortion",
-              QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)%5%6")
-                  .arg(drawn)
-                  .arg(warp_->grid().columns)
-                  .arg(warp_->grid().rows)
-                  .arg(warp_->gridError(), 0, 'f', 3)
-                  .arg(cells, note));
+    showWarpStatus();
   }
+}
+
+void ProjectorCameraDisplay::showWarpStatus()
+{
+  warp_status_direct_ = warp_->readsDirectly();
+  const QString cells = warp_->cells() != WarpCells::Occupied ?
+                            QString() :
+                            QString("; only its cells with something on them are drawn (read back %1)")
+                                .arg(warp_status_direct_ ? "directly" : "whole");
+  const std::string cells_note = warp_->cellsNote();
+  const QString note = cells_note.empty() ? QString() : QString(" (%1)").arg(cells_note.c_str());
+  setStatus(cells_note.empty() ? rviz::StatusProperty::Ok : rviz::StatusProperty::Warn, "Distortion",
+            QString("%1: drawn through a %2x%3 warp (max %4 px from the lens model)%5%6")
+                .arg(pipeline_.lensSource().distortionDrawn())
+                .arg(warp_->grid().columns)
+                .arg(warp_->grid().rows)
+                .arg(warp_->gridError(), 0, 'f', 3)
+                .arg(cells, note));
 }
 
 void ProjectorCameraDisplay::updateMaxLitHeight()

@@ -282,6 +282,10 @@ void ProjectorCameraDisplay::renderNow()
   if (!crosshairs_shown_ && !pattern_->shown())
   {
     warp_->renderIdeal();  // through a distorting lens: the ideal view first (nothing without one)
+    if (warp_->active() && warp_->readsDirectly() != warp_status_direct_)
+    {
+      showWarpStatus();  // the direct read failed this frame: the status says so from now on
+    }
   }
   output_->render(!publish);
   ++frames_rendered_;

@@ -96,8 +96,10 @@ TextureRows::TextureRows(const Ogre::TexturePtr& texture) : texture_(texture)
   const Ogre::RenderSystemCapabilities* caps = render_system ? render_system->getCapabilities() : nullptr;
   const Ogre::DriverVersion version = caps ? caps->getDriverVersion() : Ogre::DriverVersion();
   const char* setting = std::getenv("RVIZ_PROJECTOR_WARP_READBACK");
-  readback_ = chooseRowReadback(setting ? setting : "", render_system ? render_system->getName() : std::string(),
-                                version.major, version.minor, texture_->getFormat() == Ogre::PF_BYTE_RGBA, &note_);
+  const std::string name = render_system ? render_system->getName() : std::string();
+  opengl_ = asciiLower(name).find("opengl") != std::string::npos;
+  readback_ = chooseRowReadback(setting ? setting : "", name, version.major, version.minor,
+                                texture_->getFormat() == Ogre::PF_BYTE_RGBA, &note_);
   if (readback_ == RowReadback::Direct)
   {
     try
@@ -124,7 +126,8 @@ bool TextureRows::read(const Strip& strip)
       return true;
     }
     readback_ = RowReadback::Whole;  // never again: this frame's cells are all drawn
-    note_ = "the direct read of the ideal render failed (OpenGL error): read whole from now on";
+    note_ = std::string("the direct read of the ideal render failed (") + direct_failure_ +
+            "): read whole from now on";
     return false;
   }
   return readWhole(strip);
@@ -134,6 +137,15 @@ bool TextureRows::readWhole(const Strip& strip)
 {
   const std::uint32_t w = texture_->getWidth();
   const std::uint32_t h = texture_->getHeight();
+  if (opengl_)
+  {
+    GLint pack_buffer = 0;  // OGRE's glGetTexImage would write into it, leaving buffer_ as it was
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+    if (pack_buffer != 0)
+    {
+      return false;
+    }
+  }
   buffer_.resize(std::size_t(w) * h);
   try
   {
@@ -158,8 +170,10 @@ bool TextureRows::readDirect(const Strip& strip)
   const PackState pack;
   if (pack.packBufferBound())
   {
+    direct_failure_ = "a pixel-pack buffer was bound";
     return false;
   }
+  direct_failure_ = "OpenGL error";
   for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i)
   {
     // Errors of earlier calls (OGRE does not read them): not ours to judge.

@@ -19,6 +19,7 @@
 #include <OgreRoot.h>
 #include <OgreSceneManager.h>
 #include <OgreViewport.h>
+#include <RenderSystems/GL/OgreGLContext.h>
 #include <QColor>
 #include <rviz/display.h>
 
@@ -27,6 +28,16 @@
 #include "rviz_projector/displays/projector_output_window.h"
 #include "rviz_projector/displays/viewport_clear.h"
 #include "projector_test_fixture.h"
+
+// Last: Xlib's macros (None, Status, ...) must not meet the headers above.
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/glx.h>
+#undef None
+#undef Status
+#undef Bool
+#undef Always
+#undef Success
 
 using rviz_projector_test::distortedInfo;
 using rviz_projector_test::Mount;
@@ -338,4 +349,118 @@ TEST_F(ProjectorCameraTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindO
       }
     }
   }
+}
+
+// A direct read of the ideal render that fails at run time (here a pixel-pack buffer left bound in the
+// GL context the texture is drawn with, as another plugin could leave it: texture_rows.h refuses to
+// read into it) draws every cell that frame and reads through OGRE from then on. The "Distortion"
+// status must say so at once (a warning, "read back whole", the reason), not keep claiming the direct
+// read until the lens changes; and the pictures after it must still be right, while the buffer stays
+// bound (OGRE's read would go into it too: every cell is drawn) and once it is gone.
+TEST_F(ProjectorCameraTest, ThroughALensAFailedDirectReadFallsBackAndTheStatusSaysSo)
+{
+  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
+  const PixelOracle oracle(info, down);
+  mount(down);
+  const Vec2 first = oracle.floorPoint({640, 400});
+  addTarget(first, 80.0 * oracle.depth(first) / oracle.fx());
+  unsetenv("RVIZ_PROJECTOR_WARP_READBACK");
+  info_pub_.publish(info);
+  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
+  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").text.contains("(read back directly)"); }))
+      << statusOf(projector_, "Distortion").text.toStdString();
+  EXPECT_EQ(statusOf(projector_, "Distortion").level, rviz::StatusProperty::Ok);
+
+  // The GL context OGRE draws the warp's texture with (its render target says which).
+  Ogre::GLContext* context = nullptr;
+  auto targets = Ogre::Root::getSingleton().getRenderSystem()->getRenderTargetIterator();
+  while (targets.hasMoreElements())
+  {
+    Ogre::RenderTarget* target = targets.getNext();
+    if (target->getName().find("rviz_projector_warp_texture_") != std::string::npos)
+    {
+      target->getCustomAttribute("GLCONTEXT", &context);
+    }
+  }
+  ASSERT_NE(context, nullptr) << "no GL context for the warp's texture";
+  const auto gen_buffers = reinterpret_cast<PFNGLGENBUFFERSPROC>(
+      glXGetProcAddressARB(reinterpret_cast<const GLubyte*>("glGenBuffers")));
+  const auto bind_buffer = reinterpret_cast<PFNGLBINDBUFFERPROC>(
+      glXGetProcAddressARB(reinterpret_cast<const GLubyte*>("glBindBuffer")));
+  const auto delete_buffers = reinterpret_cast<PFNGLDELETEBUFFERSPROC>(
+      glXGetProcAddressARB(reinterpret_cast<const GLubyte*>("glDeleteBuffers")));
+  ASSERT_TRUE(gen_buffers && bind_buffer && delete_buffers);
+  // Runs `f` with OGRE's texture context current, then makes current again what was.
+  auto inTextureContext = [&](const std::function<void()>& f) {
+    Display* display = glXGetCurrentDisplay();
+    const GLXDrawable draw = glXGetCurrentDrawable();
+    const GLXDrawable read = glXGetCurrentReadDrawable();
+    const GLXContext current = glXGetCurrentContext();
+    context->setCurrent();
+    f();
+    if (display && current)
+    {
+      glXMakeContextCurrent(display, draw, read, current);
+    }
+  };
+  GLuint buffer = 0;
+  inTextureContext([&] {
+    gen_buffers(1, &buffer);
+    bind_buffer(GL_PIXEL_PACK_BUFFER, buffer);
+  });
+  ASSERT_NE(buffer, 0u);
+  // A frame with the buffer bound: the direct read refuses it, and the status says so at once.
+  rviz_projector::ProjectionChangeCounter::bump();
+  projector_->renderNow();
+  const auto status = statusOf(projector_, "Distortion");
+  EXPECT_TRUE(status.text.contains("(read back whole)")) << status.text.toStdString();
+  EXPECT_TRUE(status.text.contains("direct read of the ideal render failed (a pixel-pack buffer was bound)"))
+      << status.text.toStdString();
+  EXPECT_EQ(status.level, rviz::StatusProperty::Warn) << status.text.toStdString();
+
+  // Still bound, then unbound: every picture must be right, the disc where the oracle puts it and
+  // nothing else lit (while bound OGRE's read cannot work either: every cell is drawn).
+  auto isLit = [](QRgb c) { return qRed(c) > 30 || qGreen(c) > 30 || qBlue(c) > 30; };
+  int shown = 0;
+  for (const Vec2& spot : {Vec2{700, 430}, Vec2{200, 150}, Vec2{1150, 700}, Vec2{640, 400}})
+  {
+    if (shown++ == 2)
+    {
+      inTextureContext([&] {
+        bind_buffer(GL_PIXEL_PACK_BUFFER, 0);
+        delete_buffers(1, &buffer);
+      });
+    }
+    const Vec2 floor = oracle.floorPoint(spot);
+    moveTarget(0, floor);
+    const Vec2 centre = oracle.imagePixel(floor);
+    auto stray = [&](const QImage& image, int* on_disc) {
+      int n = 0, on = 0;
+      for (int y = 0; y < image.height(); ++y)
+      {
+        for (int x = 0; x < image.width(); ++x)
+        {
+          const double r = std::hypot(x - centre.x, y - centre.y);
+          const bool lit = isLit(image.pixel(x, y));
+          n += lit && r > 46.0 ? 1 : 0;
+          on += lit && r < 20.0 ? 1 : 0;
+        }
+      }
+      *on_disc = on;
+      return n;
+    };
+    int on_disc = 0;
+    const QImage image = imagePart(grabWhen([&](const QImage& f) {
+                                     int on = 0;
+                                     return stray(imagePart(f, oracle), &on) == 0 && on > 1000;
+                                   }),
+                                   oracle);
+    EXPECT_EQ(stray(image, &on_disc), 0) << "spot (" << spot.x << ", " << spot.y << "), pack buffer "
+                                         << (shown <= 2 ? "bound" : "unbound") << ": pixels lit away from the disc";
+    EXPECT_GT(on_disc, 1000) << "spot (" << spot.x << ", " << spot.y << "), pack buffer "
+                             << (shown <= 2 ? "bound" : "unbound") << ": the disc is missing";
+  }
+  EXPECT_TRUE(statusOf(projector_, "Distortion").text.contains("(read back whole)"));
 }

@@ -73,8 +73,9 @@ public:
   bool readsDirectly() const;
   /// The mesh draws every pixel of the window (the window need not be cleared before it).
   bool coversWindow() const { return active() && cells_ == WarpCells::All; }
-  /// A note on the choice of cells for the status (e.g. an unknown RVIZ_PROJECTOR_WARP_CELLS).
-  const std::string& cellsNote() const { return cells_note_; }
+  /// A note on the choice of cells for the status (e.g. an unknown RVIZ_PROJECTOR_WARP_CELLS), and
+  /// the reader's on how the render is read back (e.g. a direct read that failed).
+  std::string cellsNote() const;
 
   void setBackground(const Ogre::ColourValue& colour);
   void setVisibilityMask(std::uint32_t mask);

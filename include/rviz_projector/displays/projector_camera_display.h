@@ -148,6 +148,8 @@ private:
   void showLensStatuses();
   /// The distortion warp for the lens (none: released) and its "Distortion" status.
   void updateWarp();
+  /// The "Distortion" status of a warp that is drawn (which cells, how the render is read back).
+  void showWarpStatus();
   /// "Main view" warning when rviz's own view is known to starve this one (main_view_cost.h).
   void checkMainViewCost();
   /// The "Visibility" error when no visibility bit was left for this display.
@@ -207,6 +209,7 @@ private:
   std::unique_ptr<ProjectorFloorOverlay> overlay_;
   std::unique_ptr<ProjectorCrosshairs> crosshairs_;
   bool crosshairs_shown_ = false;
+  bool warp_status_direct_ = false;  // the Distortion status says the render is read back directly
   std::unique_ptr<ProjectorPattern> pattern_;  ///< the Pattern topic (a pattern replaces the scene)
   bool pattern_changed_ = false;               ///< a new pattern since the last frame: publish it at once
   std::unique_ptr<DistortionWarp> warp_;  ///< drawing through the lens's D (inactive without one)

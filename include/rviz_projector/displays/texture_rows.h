@@ -40,7 +40,7 @@ public:
   /// One strip: `count` rows from row `y0`, `stride` pixels apart (valid during the call only).
   using Strip = std::function<void(const std::uint32_t* rows, std::uint32_t y0, std::uint32_t count, std::size_t stride)>;
 
-  /// Rows per strip: a multiple of the warp scan's 16-pixel blocks; 354 KB of 1382-pixel rows, in a
+  /// Rows per strip: a multiple of the warp scan's 8-pixel blocks; 354 KB of 1382-pixel rows, in a
   /// core's L2 cache. Measured on llvmpipe (the same process, strips and whole reads alternating
   /// frame by frame): read + scan 0.25 ms with strips of 32 or 64 rows, 0.44-0.49 ms read whole
   /// in one call; 64 rows make half the driver calls (and allocations) of 32.
@@ -50,7 +50,9 @@ public:
   explicit TextureRows(const Ogre::TexturePtr& texture);
 
   /// Hands every row of the texture to `strip`, top to bottom. False when a read failed: the strips
-  /// handed on (if any) are then not the picture, and the direct read is not tried again.
+  /// handed on (if any) are then not the picture, and the direct read is not tried again. Under
+  /// OpenGL a pixel-pack buffer left bound (by another part of the process) fails either read: the
+  /// pixels would go into that buffer, not to the caller.
   bool read(const Strip& strip);
 
   RowReadback readback() const { return readback_; }
@@ -65,6 +67,8 @@ private:
   RowReadback readback_ = RowReadback::Whole;
   std::string note_;
   unsigned gl_id_ = 0;
+  bool opengl_ = false;  // OGRE's OpenGL render system: its GL state can be asked
+  const char* direct_failure_ = "";  // why the last direct read failed, for the note
   std::vector<std::uint32_t> buffer_;  // one strip (direct) or the whole picture (whole)
 };
 }  // namespace rviz_projector
