@@ -67,6 +67,31 @@ std::vector<const Ogre::Viewport*> idealTextureViewports()
   }
   return viewports;
 }
+/// The projector 2 m above the floor looking straight down through the wide-angle lens (k1 = -0.2,
+/// k2 = 0.05), and the oracle of where it must light floor points.
+class WarpPixelsTest : public ProjectorCameraTest
+{
+protected:
+  const Mount down_{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
+  const sensor_msgs::CameraInfo wide_ = distortedInfo({-0.2, 0.05, 0, 0, 0});
+  const PixelOracle oracle_{wide_, down_};
+
+  /// Mounts the projector, adds a floor disc `diameter` metres across at the floor point the image
+  /// pixel `pixel` sees, publishes the lens and waits until the disc is ready and the window shown.
+  void showDisc(const Vec2& pixel, double diameter)
+  {
+    mount(down_);
+    addTarget(oracle_.floorPoint(pixel), diameter);
+    info_pub_.publish(wide_);
+    ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
+    ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  }
+  /// The diameter, metres, of a floor disc at image pixel `pixel` that is `pixels` across there.
+  double discDiameter(const Vec2& pixel, double pixels) const
+  {
+    return pixels * oracle_.depth(oracle_.floorPoint(pixel)) / oracle_.fx();
+  }
+};
 }  // namespace
 
 // Issue 24: under the warp's mesh the window is not cleared first (the mesh covers every pixel of
@@ -75,17 +100,11 @@ std::vector<const Ogre::Viewport*> idealTextureViewports()
 // lights every pixel; moved out of view, every image pixel must be the black background again.
 // Then lit again, and the projector's pose lost (its frame unknown): the mesh is not drawn and the
 // window must be blanked all the same.
-TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
+TEST_F(WarpPixelsTest, ThroughALensNothingOfAnEarlierFrameStays)
 {
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
+  const PixelOracle& oracle = oracle_;
   const Vec2 centre = oracle.floorPoint({640, 400});
-  addTarget(centre, 200.0);
-  info_pub_.publish(info);
-  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
-  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  ASSERT_NO_FATAL_FAILURE(showDisc({640, 400}, 200.0));
   auto isGreen = [](QRgb c) { return qGreen(c) > 128 && qRed(c) < 100 && qBlue(c) < 100; };
   auto isBlack = [](QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; };
   auto count = [](const QImage& image, const std::function<bool(QRgb)>& pred) {
@@ -136,12 +155,11 @@ TEST_F(ProjectorCameraTest, ThroughALensNothingOfAnEarlierFrameStays)
 // draws, pixel for pixel: twenty targets spread over the image, through the wide-angle lens, drawn
 // once with every cell (RVIZ_PROJECTOR_WARP_CELLS=all: the path whose accuracy the tests above
 // measure against cv::projectPoints) and once with the occupied cells only.
-TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIsTheWholeMeshs)
+TEST_F(WarpPixelsTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIsTheWholeMeshs)
 {
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
+  const sensor_msgs::CameraInfo& info = wide_;
+  const PixelOracle& oracle = oracle_;
+  mount(down_);
   for (int j = 0; j < 4; ++j)
   {
     for (int i = 0; i < 5; ++i)
@@ -278,18 +296,11 @@ TEST_F(ProjectorCameraTest, ThroughALensOnlyOccupiedCellsAreDrawnAndThePictureIs
 // corners), on a black and then a blue background: every frame must show the disc where
 // cv::projectPoints puts it (PixelOracle) and nothing else, every other pixel exactly the background
 // (one level of rounding allowed).
-TEST_F(ProjectorCameraTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindOnAnyBackground)
+TEST_F(WarpPixelsTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindOnAnyBackground)
 {
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
+  const PixelOracle& oracle = oracle_;
   constexpr double kDiscPixels = 80.0;
-  const Vec2 first = oracle.floorPoint({640, 400});
-  addTarget(first, kDiscPixels * oracle.depth(first) / oracle.fx());
-  info_pub_.publish(info);
-  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
-  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  ASSERT_NO_FATAL_FAILURE(showDisc({640, 400}, discDiameter({640, 400}, kDiscPixels)));
   ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").text.contains("only its cells"); }))
       << "this test is about the occupied cells (software renderer): "
       << statusOf(projector_, "Distortion").text.toStdString();
@@ -357,18 +368,11 @@ TEST_F(ProjectorCameraTest, ThroughALensASpotThatJumpsAroundLeavesNothingBehindO
 // status must say so at once (a warning, "read back whole", the reason), not keep claiming the direct
 // read until the lens changes; and the pictures after it must still be right, while the buffer stays
 // bound (OGRE's read would go into it too: every cell is drawn) and once it is gone.
-TEST_F(ProjectorCameraTest, ThroughALensAFailedDirectReadFallsBackAndTheStatusSaysSo)
+TEST_F(WarpPixelsTest, ThroughALensAFailedDirectReadFallsBackAndTheStatusSaysSo)
 {
-  const Mount down{{0.3, -0.2, 2.0}, 1.0, 0.0, 0.0, 0.0};
-  const sensor_msgs::CameraInfo info = distortedInfo({-0.2, 0.05, 0, 0, 0});
-  const PixelOracle oracle(info, down);
-  mount(down);
-  const Vec2 first = oracle.floorPoint({640, 400});
-  addTarget(first, 80.0 * oracle.depth(first) / oracle.fx());
+  const PixelOracle& oracle = oracle_;
   unsetenv("RVIZ_PROJECTOR_WARP_READBACK");
-  info_pub_.publish(info);
-  ASSERT_TRUE(waitFor([&] { return projector_->hasLens() && targetsReady(); }));
-  ASSERT_TRUE(waitFor([&] { return projector_->outputWindow() && projector_->outputWindow()->isVisible(); }));
+  ASSERT_NO_FATAL_FAILURE(showDisc({640, 400}, discDiameter({640, 400}, 80.0)));
   ASSERT_TRUE(waitFor([&] { return statusOf(projector_, "Distortion").text.contains("(read back directly)"); }))
       << statusOf(projector_, "Distortion").text.toStdString();
   EXPECT_EQ(statusOf(projector_, "Distortion").level, rviz::StatusProperty::Ok);
