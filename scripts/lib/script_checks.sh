@@ -5,7 +5,7 @@
 # A check run again after a known, flaky failure (not this package's: see check_demo): one line
 # "FLAKY <check> (retried after <reason>)" per retry, counted in $flaky; scripts/test prints
 # "N flaky" just before its summary line (which keeps its "N passed, N failed, N skipped" form).
-flaky=0
+flaky=${flaky:-0}  # scripts/test may have counted rostests run again already
 flaky() { flaky=$((flaky + 1)); echo "FLAKY $*"; }
 
 # Waits until COMMAND... succeeds, at most SECONDS; 0 when it did.
