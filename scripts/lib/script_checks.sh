@@ -2,11 +2,9 @@
 # Checks of the scripts themselves, sourced by scripts/test (which defines pass/fail/skip, RP_WS,
 # RP_ROOT and the sourced workspace). Each check counts as one test.
 
-# A check run again after a known, flaky failure (not this package's: see check_demo): one line
-# "FLAKY <check> (retried after <reason>)" per retry, counted in $flaky; scripts/test prints
-# "N flaky" just before its summary line (which keeps its "N passed, N failed, N skipped" form).
-flaky=${flaky:-0}  # scripts/test may have counted rostests run again already
-flaky() { flaky=$((flaky + 1)); echo "FLAKY $*"; }
+# A check run again after a known, flaky failure (not this package's: see check_demo) calls
+# scripts/test's flaky(): one line "FLAKY <check> (retried after <reason>)" per retry, counted in
+# $flaky; scripts/test prints "N flaky" just before its summary line.
 
 # Waits until COMMAND... succeeds, at most SECONDS; 0 when it did.
 rp_wait_for() {

@@ -243,13 +243,9 @@ void DistortionWarp::drawOccupiedCells()
                                                       << "; every cell of the warp is drawn this frame");
   }
   const std::size_t count = scan_->finish(occupied_);
-  // What the texture holds now: next frame erases just that (a picture not read back whole: the
-  // next frame clears all of it).
-  erase_ready_ = scan_->complete();
-  if (erase_ready_)
-  {
-    scan_->litRects(lit_rects_);
-  }
+  // The texture now holds the scan's picture in the current background: the next frame erases what
+  // the scan found lit (prepareTexture; a picture not read back whole: it clears all of it).
+  erase_ready_ = true;
   mesh_->setVisible(count > 0);
   if (count > 0 && occupied_ != drawn_)  // the same cells as the last frame: the mesh holds them
   {
@@ -264,9 +260,13 @@ void DistortionWarp::prepareTexture()
   // pixels, which costs more per pixel: it pays while little is lit. Past an eighth of the blocks
   // lit (chosen, not tuned) the texture is cleared whole, as it is after a failed read, a new
   // texture or another background (erase_ready_ false).
-  static const std::vector<TexelRect> kNothing;
-  const bool erase = erase_ready_ && scan_->litBlocks() * kEraseShare <= scan_->blocks();
-  eraser_->paint(erase ? lit_rects_ : kNothing, background_bytes_);
+  const bool erase = erase_ready_ && scan_->complete() && scan_->litBlocks() * kEraseShare <= scan_->blocks();
+  lit_rects_.clear();
+  if (erase)
+  {
+    scan_->litRects(lit_rects_);
+  }
+  eraser_->paint(lit_rects_, background_bytes_);
   setClearedBuffers(*viewport_, erase ? kErasedTextureClearBuffers : kProjectorClearBuffers);
 }
 

@@ -31,6 +31,20 @@ GetTextureSubImage getTextureSubImage()
   return function;
 }
 
+// OGRE's OpenGL render system (its GL state can be asked; the direct read needs it).
+bool isOpenGL(const std::string& render_system)
+{
+  return asciiLower(render_system).find("opengl") != std::string::npos;
+}
+
+// The pixel-pack buffer bound now (0: none): a read would go into it, not into client memory.
+GLint boundPackBuffer()
+{
+  GLint buffer = 0;
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &buffer);
+  return buffer;
+}
+
 // The pack state glGetTextureSubImage reads, set to tight rows into client memory and put back
 // afterwards (OGRE keeps its own view of the GL state).
 class PackState
@@ -38,7 +52,7 @@ class PackState
 public:
   PackState()
   {
-    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &buffer_);
+    buffer_ = boundPackBuffer();
     glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length_);
     glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows_);
     glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels_);
@@ -72,7 +86,7 @@ RowReadback chooseRowReadback(const std::string& setting, const std::string& ren
                               int gl_minor, bool rgba8, std::string* note)
 {
   const std::string s = asciiLower(setting);
-  const bool possible = asciiLower(render_system).find("opengl") != std::string::npos &&
+  const bool possible = isOpenGL(render_system) &&
                         (gl_major > 4 || (gl_major == 4 && gl_minor >= 5)) && rgba8;
   if (s == "whole")
   {
@@ -97,7 +111,7 @@ TextureRows::TextureRows(const Ogre::TexturePtr& texture) : texture_(texture)
   const Ogre::DriverVersion version = caps ? caps->getDriverVersion() : Ogre::DriverVersion();
   const char* setting = std::getenv("RVIZ_PROJECTOR_WARP_READBACK");
   const std::string name = render_system ? render_system->getName() : std::string();
-  opengl_ = asciiLower(name).find("opengl") != std::string::npos;
+  opengl_ = isOpenGL(name);
   readback_ = chooseRowReadback(setting ? setting : "", name, version.major, version.minor,
                                 texture_->getFormat() == Ogre::PF_BYTE_RGBA, &note_);
   if (readback_ == RowReadback::Direct)
@@ -137,14 +151,9 @@ bool TextureRows::readWhole(const Strip& strip)
 {
   const std::uint32_t w = texture_->getWidth();
   const std::uint32_t h = texture_->getHeight();
-  if (opengl_)
+  if (opengl_ && boundPackBuffer() != 0)
   {
-    GLint pack_buffer = 0;  // OGRE's glGetTexImage would write into it, leaving buffer_ as it was
-    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
-    if (pack_buffer != 0)
-    {
-      return false;
-    }
+    return false;  // OGRE's glGetTexImage would write into that buffer, leaving buffer_ as it was
   }
   buffer_.resize(std::size_t(w) * h);
   try

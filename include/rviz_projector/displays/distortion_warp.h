@@ -112,8 +112,8 @@ private:
   // Occupied cells: the texture's colour is put back where the last frame lit it (warp_eraser.h)
   // instead of cleared whole, when that frame's picture was read back whole and lit little of it.
   std::unique_ptr<WarpEraser> eraser_;
-  std::vector<TexelRect> lit_rects_;  // the last frame's lit blocks (valid if erase_ready_)
-  bool erase_ready_ = false;
+  std::vector<TexelRect> lit_rects_;  // scratch: what prepareTexture() has the eraser paint
+  bool erase_ready_ = false;  // the texture holds scan_'s last picture in the current background
   std::array<std::uint8_t, 4> background_bytes_{{0, 0, 0, 255}};  // the texture's bytes after a clear
   bool mesh_written_ = false;
   std::uint32_t raw_width_ = 1, raw_height_ = 1;  // the raw image the mesh spans
